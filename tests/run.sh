@@ -1,0 +1,75 @@
+#!/bin/sh
+# The compile matrix of `make test`: every configuration builds the test
+# suite with warnings as errors and runs it; the last line sums them all.
+set -u
+cd "$(dirname "$0")/.." || exit 2
+B=build/test
+mkdir -p "$B"
+WARN="-Wall -Wextra -pedantic -Werror -Wshadow -Wdouble-promotion"
+pass=0
+fail=0
+configs=0
+
+# run NAME COMPILER FLAGS... : build tests/test_hrm.c and run it
+run() {
+    name=$1
+    shift
+    configs=$((configs + 1))
+    if ! "$@" -I. tests/test_hrm.c -o "$B/$name" -lm 2> "$B/$name.log"; then
+        echo "$name: build failed"; cat "$B/$name.log"; fail=$((fail + 1)); return
+    fi
+    tally "$name" "$B/$name"
+}
+
+# tally NAME BINARY: run it, add its "N passed, N failed" line to the sums
+tally() {
+    out=$("$2" 2>&1)
+    code=$?
+    line=$(printf '%s\n' "$out" | grep -E '^[0-9]+ passed, [0-9]+ failed' | tail -n 1)
+    if [ -z "$line" ] || [ $code -ne 0 ]; then
+        printf '%s\n' "$out" | grep -E 'FAIL|error|runtime' | head -n 40
+        echo "$1: exit $code, summary '${line}'"
+    fi
+    if [ -z "$line" ]; then fail=$((fail + 1)); return; fi
+    p=${line%% passed*}
+    f=${line#*passed, }; f=${f%% failed*}
+    if [ $code -ne 0 ] && [ "$f" -eq 0 ]; then f=1; fi
+    pass=$((pass + p)); fail=$((fail + f))
+    echo "$1: $line"
+}
+
+run gcc-c99-O0          gcc   -std=c99 -O0 $WARN
+run gcc-c99-O2          gcc   -std=c99 -O2 $WARN
+run gcc-c99-O2-float    gcc   -std=c99 -O2 $WARN -DHRM_REAL=float
+run gcc-c99-O0-float    gcc   -std=c99 -O0 $WARN -DHRM_REAL=float
+run clang-c99-O0        clang -std=c99 -O0 $WARN
+run clang-c99-O2        clang -std=c99 -O2 $WARN
+run clang-c99-O2-float  clang -std=c99 -O2 $WARN -DHRM_REAL=float
+run gxx-O2              g++     -x c++ -std=c++11 -O2 $WARN
+run clangxx-O0-float    clang++ -x c++ -std=c++11 -O0 $WARN -DHRM_REAL=float
+run gcc-static-O2       gcc   -std=c99 -O2 $WARN -DHRM_STATIC
+run clang-asan-ubsan    clang -std=c99 -O1 -g $WARN -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+
+# Implementation compiled as C, used from C++: the extern "C" linkage pair.
+configs=$((configs + 1))
+if gcc -std=c99 -O2 $WARN -I. -c tests/linkage_impl.c -o "$B/linkage_impl.o" 2> "$B/linkage.log" &&
+   g++ -std=c++11 -O2 $WARN -I. tests/linkage_user.cpp "$B/linkage_impl.o" -o "$B/linkage" -lm 2>> "$B/linkage.log"; then
+    tally linkage-c-impl-cxx-user "$B/linkage"
+else
+    echo "linkage: build failed"; cat "$B/linkage.log"; fail=$((fail + 1))
+fi
+
+# The quick start in hrm.h's top comment compiles and runs as printed.
+configs=$((configs + 1))
+sed -n '/---- quick start begin ----/,/---- quick start end ----/p' hrm.h |
+    sed '1d;$d' | sed 's/^   //' > "$B/quickstart.c"
+if gcc -std=c99 -O2 $WARN -I. "$B/quickstart.c" -o "$B/quickstart" -lm 2> "$B/quickstart.log" &&
+   "$B/quickstart" > "$B/quickstart.out"; then
+    pass=$((pass + 1)); echo "quickstart: compiles and runs: $(cat "$B/quickstart.out")"
+else
+    echo "quickstart: FAILED"; cat "$B/quickstart.log"; fail=$((fail + 1))
+fi
+
+echo "$configs configurations"
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]
