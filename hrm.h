@@ -222,7 +222,14 @@ typedef enum hrm_status {
     X(HRM_MONTE_CARLO, "monte-carlo")                                        \
     X(HRM_EULER, "euler")                                                    \
     X(HRM_RK4, "rk4")                                                        \
-    X(HRM_ADAMS_BASHFORTH, "adams-bashforth")
+    X(HRM_ADAMS_BASHFORTH, "adams-bashforth")                                \
+    X(HRM_NESTED_SIMPSON, "nested-simpson")                                  \
+    X(HRM_GAUSS_KRONROD, "gauss-kronrod")                                    \
+    X(HRM_BOGACKI_SHAMPINE, "bogacki-shampine")                              \
+    X(HRM_DORMAND_PRINCE, "dormand-prince")                                  \
+    X(HRM_FEHLBERG, "fehlberg")                                              \
+    X(HRM_CASH_KARP, "cash-karp")                                            \
+    X(HRM_VERNER, "verner")
 
 typedef enum hrm_method {
     HRM_METHOD_DEFAULT = 0,
@@ -237,6 +244,21 @@ typedef enum hrm_form {
     HRM_FORM_OPTICAL_DEPTH,    /* (tau, A): stable at any step */
     HRM_FORM_RTE               /* dL/dt = S - sigma_t L: stiff, for study */
 } hrm_form;
+
+/* Step-size control of the embedded Runge-Kutta methods. */
+typedef enum hrm_control {
+    HRM_CONTROL_DEFAULT = 0, /* HRM_CONTROL_PI */
+    HRM_CONTROL_PI,          /* mixed tolerance, PI controller (Gustafsson) */
+    HRM_CONTROL_MUNOZ,       /* Munoz 2014 eq. 12 */
+    HRM_CONTROL_GONTERMAN    /* Gonterman 2010 eq. 3.4, error per unit step */
+} hrm_control;
+
+/* Gauss-Kronrod subdivision. */
+typedef enum hrm_gk_mode {
+    HRM_GK_DEFAULT = 0,      /* HRM_GK_GLOBAL */
+    HRM_GK_GLOBAL,           /* bisect the worst interval (QUADPACK QAG) */
+    HRM_GK_LOCAL             /* Munoz 2014: recursive local split */
+} hrm_gk_mode;
 
 /* Medium flags. */
 #define HRM_MEDIUM_HOMOGENEOUS   1u /* use const_sigma_a/_s, closed-form Tr */
@@ -262,13 +284,30 @@ typedef struct hrm_options {
     int steps;          /* fixed-step methods: segments, panels, steps or
                            Monte Carlo samples. 0: 32. Typical values to start
                            with: 8-32 for Simpson/RK4 on smooth media,
-                           64-256 for the rectangle rule. Negative: error. */
-    hrm_form form;      /* IVP solvers only. 0: optical-depth form */
+                           64-256 for the rectangle rule. Nested Simpson and
+                           Gauss-Kronrod: initial panels/intervals (0: 4 and
+                           1); ignored by the Runge-Kutta pairs.
+                           Negative: error. */
+    hrm_form form;      /* IVP solvers (Euler, RK4, Adams-Bashforth and the
+                           Runge-Kutta pairs). 0: optical-depth form */
     uint64_t seed;      /* Monte Carlo and jitter; vary it per ray/pixel. */
     int jitter;         /* rectangle rule: nonzero offsets the ray's samples
                            by one random fraction of a segment per ray
                            (Gonterman's anti-banding jitter). 0: midpoints */
     int stratified;     /* Monte Carlo: nonzero takes one sample per segment */
+
+    /* Adaptive methods (see TOLERANCES in the manual). */
+    hrm_real rtol;      /* relative tolerance on L and tau. 0: 1e-4. Typical:
+                           1e-2 (previews) to 1e-6; clipped at 100 epsilons */
+    hrm_real atol;      /* absolute tolerance on L. 0: none */
+    hrm_real h_min;     /* smallest step or interval. 0: 1e-9 of the ray
+                           (1/1024 of it with HRM_CONTROL_MUNOZ) */
+    hrm_real h_max;     /* largest step or interval. 0: the whole ray */
+    hrm_real h0;        /* first step of the Runge-Kutta methods. 0: chosen
+                           from rtol and the method's order */
+    long max_evals;     /* source evaluation budget. 0: 100000 */
+    hrm_control control;/* Runge-Kutta step control. 0: HRM_CONTROL_PI */
+    hrm_gk_mode gk_mode;/* Gauss-Kronrod. 0: HRM_GK_GLOBAL */
 } hrm_options;
 
 typedef struct hrm_stats {
@@ -403,6 +442,9 @@ typedef struct hrm__ctx {
     int rte;               /* HRM_FORM_RTE */
     hrm_real sa[HRM__CH], ss[HRM__CH], st[HRM__CH]; /* constants (homog) */
     hrm_status status;     /* first callback failure, else HRM_OK */
+    hrm_status warning;    /* first warning, else HRM_OK */
+    hrm_real rtol, atol, h_min, h_max; /* resolved; steps in parameter units */
+    long max_evals;
     uint64_t rng;
     hrm_stats stats;
 } hrm__ctx;
@@ -656,18 +698,20 @@ static void hrm__simpson(hrm__ctx *c, int N, hrm_real L[HRM__CH], hrm_real tau[H
 #define HRM__MAX_STAGES 8
 #define HRM__NY (2 * HRM__CH)
 
-/* An explicit Runge-Kutta method: stages s, row-major a (s x s, strictly
-   lower), weights b, nodes c; e = b - b_hat for embedded pairs. */
+/* An explicit Runge-Kutta method: stages s, order, row-major a (s x s,
+   strictly lower), weights b (the propagated solution), nodes c; embedded
+   pairs add the weights bh of the other solution. */
 typedef struct hrm__tableau {
     int s, order;
-    const hrm_real *a, *b, *c, *e;
+    const hrm_real *a, *b, *c, *bh; /* bh: embedded weights, or NULL */
+    int k; /* the error estimate is O(h^(k+1)) */
 } hrm__tableau;
 
 /* Euler (1768). */
 static const hrm_real hrm__euler_a[] = {0};
 static const hrm_real hrm__euler_b[] = {1};
 static const hrm_real hrm__euler_c[] = {0};
-static const hrm__tableau hrm__euler = {1, 1, hrm__euler_a, hrm__euler_b, hrm__euler_c, 0};
+static const hrm__tableau hrm__euler = {1, 1, hrm__euler_a, hrm__euler_b, hrm__euler_c, 0, 0};
 
 /* Classical Runge-Kutta (Kutta 1901). */
 static const hrm_real hrm__rk4_a[] = {
@@ -677,7 +721,7 @@ static const hrm_real hrm__rk4_a[] = {
     0, 0, 1, 0};
 static const hrm_real hrm__rk4_b[] = {1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6};
 static const hrm_real hrm__rk4_c[] = {0, 0.5, 0.5, 1};
-static const hrm__tableau hrm__rk4 = {4, 4, hrm__rk4_a, hrm__rk4_b, hrm__rk4_c, 0};
+static const hrm__tableau hrm__rk4 = {4, 4, hrm__rk4_a, hrm__rk4_b, hrm__rk4_c, 0, 0};
 
 /* Adams-Bashforth 4-step (Bashforth & Adams 1883), newest value first. */
 static const hrm_real hrm__ab4_beta[4] = {55.0 / 24, -59.0 / 24, 37.0 / 24, -9.0 / 24};
@@ -700,14 +744,13 @@ static void hrm__deriv(const hrm__ctx *c, const hrm__pt *pt, const hrm_real *y, 
     }
 }
 
-/* One explicit RK step from p to p_end = p + h. start holds the sample at p
-   (and becomes the sample at p_end when the tableau has a node c = 1, so the
-   next step does not evaluate it again: *have_start says whether it did).
-   Stages sharing a node share one evaluation. err (optional) receives
-   h * sum e_i k_i. */
-static void hrm__rk_step(hrm__ctx *c, const hrm__tableau *tb, hrm__pt *start,
-                         int *have_start, hrm_real p, hrm_real p_end,
-                         const hrm_real *y, hrm_real *ynew, hrm_real *err)
+/* One explicit RK step from p to p_end = p + h from the sample at p.
+   Stages sharing a node share one evaluation; the sample at p_end (a node
+   c = 1) is returned in *end so that the next step reuses it: the result
+   says whether it did. err (optional) receives h * sum (b_i - bh_i) k_i. */
+static int hrm__rk_step(hrm__ctx *c, const hrm__tableau *tb, const hrm__pt *start,
+                        hrm__pt *end, hrm_real p, hrm_real p_end,
+                        const hrm_real *y, hrm_real *ynew, hrm_real *err)
 {
     hrm__pt pts[HRM__MAX_STAGES];
     const hrm__pt *sp[HRM__MAX_STAGES];
@@ -716,7 +759,6 @@ static void hrm__rk_step(hrm__ctx *c, const hrm__tableau *tb, hrm__pt *start,
     int i, j, n, end_stage = -1;
 
     HRM_ASSERT(tb->s <= HRM__MAX_STAGES);
-    if (!*have_start) hrm__eval(c, p, start);
     for (i = 0; i < tb->s; ++i) {
         hrm_real ci = tb->c[i];
         sp[i] = 0;
@@ -744,13 +786,20 @@ static void hrm__rk_step(hrm__ctx *c, const hrm__tableau *tb, hrm__pt *start,
         hrm_real acc = 0, eacc = 0;
         for (i = 0; i < tb->s; ++i) {
             acc += tb->b[i] * k[i][n];
-            if (err) eacc += tb->e[i] * k[i][n];
+            if (err) eacc += (tb->b[i] - tb->bh[i]) * k[i][n];
         }
         ynew[n] = y[n] + h * acc;
         if (err) err[n] = h * eacc;
     }
-    *have_start = end_stage >= 0;
-    if (end_stage >= 0) *start = pts[end_stage];
+    if (end_stage >= 0) *end = pts[end_stage];
+    return end_stage >= 0;
+}
+
+/* Initial state: (tau, A) = 0 at t0, or (Tr, L) = (1, 0) at t1. */
+static void hrm__ivp_init(const hrm__ctx *c, hrm_real y[HRM__NY])
+{
+    hrm__fill(y, HRM__CH, c->rte ? 1 : 0);
+    hrm__fill(y + HRM__CH, HRM__CH, 0);
 }
 
 /* Fixed-step IVP driver: Euler, RK4 and Adams-Bashforth 4 (three RK4 steps
@@ -761,13 +810,10 @@ static void hrm__ivp_fixed(hrm__ctx *c, const hrm__tableau *tb, int ab4, int N,
 {
     hrm_real from = c->rte ? c->pb : c->pa, to = c->rte ? c->pa : c->pb;
     hrm_real f[4][HRM__NY]; /* Adams-Bashforth history, f[n % 4] = f_n */
-    hrm__pt start;
+    hrm__pt start, end;
     int have = 0, n, i, j;
 
-    for (i = 0; i < HRM__CH; ++i) {
-        y[i] = c->rte ? 1 : 0;
-        y[HRM__CH + i] = 0;
-    }
+    hrm__ivp_init(c, y);
     for (n = 0; n < N; ++n) {
         hrm_real p = from + (to - from) * ((hrm_real)n / (hrm_real)N);
         hrm_real q = n + 1 == N ? to : from + (to - from) * ((hrm_real)(n + 1) / (hrm_real)N);
@@ -778,7 +824,9 @@ static void hrm__ivp_fixed(hrm__ctx *c, const hrm__tableau *tb, int ab4, int N,
                 have = 1;
                 hrm__deriv(c, &start, y, f[n % 4]);
             }
-            hrm__rk_step(c, tb, &start, &have, p, q, y, y, 0);
+            if (!have) hrm__eval(c, p, &start);
+            have = hrm__rk_step(c, tb, &start, &end, p, q, y, y, 0);
+            if (have) start = end;
         } else {
             if (!have) hrm__eval(c, p, &start);
             have = 0;
@@ -802,6 +850,553 @@ static void hrm__ivp_fixed(hrm__ctx *c, const hrm__tableau *tb, int ab4, int N,
         }
         c->stats.steps++;
         if (c->status != HRM_OK) return;
+    }
+}
+
+/* ---------------------------------------------------------------------- */
+/* Embedded Runge-Kutta pairs                                              */
+/* ---------------------------------------------------------------------- */
+
+/* Bogacki & Shampine 1989, 3(2), first same as last. */
+static const hrm_real hrm__bs_a[] = {
+    0, 0, 0, 0,
+    1.0 / 2, 0, 0, 0,
+    0, 3.0 / 4, 0, 0,
+    2.0 / 9, 1.0 / 3, 4.0 / 9, 0};
+static const hrm_real hrm__bs_b[] = {2.0 / 9, 1.0 / 3, 4.0 / 9, 0};
+static const hrm_real hrm__bs_bh[] = {7.0 / 24, 1.0 / 4, 1.0 / 3, 1.0 / 8};
+static const hrm_real hrm__bs_c[] = {0, 1.0 / 2, 3.0 / 4, 1};
+
+/* Dormand & Prince 1980, 5(4), first same as last. */
+static const hrm_real hrm__dp_a[] = {
+    0, 0, 0, 0, 0, 0, 0,
+    1.0 / 5, 0, 0, 0, 0, 0, 0,
+    3.0 / 40, 9.0 / 40, 0, 0, 0, 0, 0,
+    44.0 / 45, -56.0 / 15, 32.0 / 9, 0, 0, 0, 0,
+    19372.0 / 6561, -25360.0 / 2187, 64448.0 / 6561, -212.0 / 729, 0, 0, 0,
+    9017.0 / 3168, -355.0 / 33, 46732.0 / 5247, 49.0 / 176, -5103.0 / 18656, 0, 0,
+    35.0 / 384, 0, 500.0 / 1113, 125.0 / 192, -2187.0 / 6784, 11.0 / 84, 0};
+static const hrm_real hrm__dp_b[] = {35.0 / 384, 0, 500.0 / 1113, 125.0 / 192,
+                                     -2187.0 / 6784, 11.0 / 84, 0};
+static const hrm_real hrm__dp_bh[] = {5179.0 / 57600, 0, 7571.0 / 16695, 393.0 / 640,
+                                      -92097.0 / 339200, 187.0 / 2100, 1.0 / 40};
+static const hrm_real hrm__dp_c[] = {0, 1.0 / 5, 3.0 / 10, 4.0 / 5, 8.0 / 9, 1, 1};
+
+/* Fehlberg 1969, 4(5): the fourth-order solution is propagated. */
+static const hrm_real hrm__rkf_a[] = {
+    0, 0, 0, 0, 0, 0,
+    1.0 / 4, 0, 0, 0, 0, 0,
+    3.0 / 32, 9.0 / 32, 0, 0, 0, 0,
+    1932.0 / 2197, -7200.0 / 2197, 7296.0 / 2197, 0, 0, 0,
+    439.0 / 216, -8, 3680.0 / 513, -845.0 / 4104, 0, 0,
+    -8.0 / 27, 2, -3544.0 / 2565, 1859.0 / 4104, -11.0 / 40, 0};
+static const hrm_real hrm__rkf_b[] = {25.0 / 216, 0, 1408.0 / 2565, 2197.0 / 4104, -1.0 / 5, 0};
+static const hrm_real hrm__rkf_bh[] = {16.0 / 135, 0, 6656.0 / 12825, 28561.0 / 56430,
+                                       -9.0 / 50, 2.0 / 55};
+static const hrm_real hrm__rkf_c[] = {0, 1.0 / 4, 3.0 / 8, 12.0 / 13, 1, 1.0 / 2};
+
+/* Cash & Karp 1990, 4(5): the fourth-order solution is propagated. */
+static const hrm_real hrm__ck_a[] = {
+    0, 0, 0, 0, 0, 0,
+    1.0 / 5, 0, 0, 0, 0, 0,
+    3.0 / 40, 9.0 / 40, 0, 0, 0, 0,
+    3.0 / 10, -9.0 / 10, 6.0 / 5, 0, 0, 0,
+    -11.0 / 54, 5.0 / 2, -70.0 / 27, 35.0 / 27, 0, 0,
+    1631.0 / 55296, 175.0 / 512, 575.0 / 13824, 44275.0 / 110592, 253.0 / 4096, 0};
+static const hrm_real hrm__ck_b[] = {2825.0 / 27648, 0, 18575.0 / 48384, 13525.0 / 55296,
+                                     277.0 / 14336, 1.0 / 4};
+static const hrm_real hrm__ck_bh[] = {37.0 / 378, 0, 250.0 / 621, 125.0 / 594, 0, 512.0 / 1771};
+static const hrm_real hrm__ck_c[] = {0, 1.0 / 5, 3.0 / 10, 3.0 / 5, 1, 7.0 / 8};
+
+/* Verner 1978, 6(5), the pair of DVERK (Hull, Enright & Jackson 1976). */
+static const hrm_real hrm__vr_a[] = {
+    0, 0, 0, 0, 0, 0, 0, 0,
+    1.0 / 6, 0, 0, 0, 0, 0, 0, 0,
+    4.0 / 75, 16.0 / 75, 0, 0, 0, 0, 0, 0,
+    5.0 / 6, -8.0 / 3, 5.0 / 2, 0, 0, 0, 0, 0,
+    -165.0 / 64, 55.0 / 6, -425.0 / 64, 85.0 / 96, 0, 0, 0, 0,
+    12.0 / 5, -8, 4015.0 / 612, -11.0 / 36, 88.0 / 255, 0, 0, 0,
+    -8263.0 / 15000, 124.0 / 75, -643.0 / 680, -81.0 / 250, 2484.0 / 10625, 0, 0, 0,
+    3501.0 / 1720, -300.0 / 43, 297275.0 / 52632, -319.0 / 2322, 24068.0 / 84065, 0,
+    3850.0 / 26703, 0};
+static const hrm_real hrm__vr_b[] = {3.0 / 40, 0, 875.0 / 2244, 23.0 / 72, 264.0 / 1955, 0,
+                                     125.0 / 11592, 43.0 / 616};
+static const hrm_real hrm__vr_bh[] = {13.0 / 160, 0, 2375.0 / 5984, 5.0 / 16, 12.0 / 85,
+                                      3.0 / 44, 0, 0};
+static const hrm_real hrm__vr_c[] = {0, 1.0 / 6, 4.0 / 15, 2.0 / 3, 5.0 / 6, 1, 1.0 / 15, 1};
+
+static const hrm__tableau hrm__pairs[5] = {
+    {4, 3, hrm__bs_a, hrm__bs_b, hrm__bs_c, hrm__bs_bh, 2},
+    {7, 5, hrm__dp_a, hrm__dp_b, hrm__dp_c, hrm__dp_bh, 4},
+    {6, 4, hrm__rkf_a, hrm__rkf_b, hrm__rkf_c, hrm__rkf_bh, 4},
+    {6, 4, hrm__ck_a, hrm__ck_b, hrm__ck_c, hrm__ck_bh, 4},
+    {8, 6, hrm__vr_a, hrm__vr_b, hrm__vr_c, hrm__vr_bh, 5}};
+
+/* New evaluations of one step: the distinct nonzero nodes. */
+static int hrm__stage_cost(const hrm__tableau *tb)
+{
+    int i, j, n = 0;
+    for (i = 0; i < tb->s; ++i) {
+        int dup = tb->c[i] == 0;
+        for (j = 0; j < i && !dup; ++j) dup = tb->c[j] == tb->c[i];
+        n += !dup;
+    }
+    return n;
+}
+
+/* ---------------------------------------------------------------------- */
+/* Error control shared by every adaptive method                           */
+/* ---------------------------------------------------------------------- */
+
+/* The tolerance of one step or interval, per component of y = (tau, L):
+   atol * frac + rtol * max(|y1 - y0|, frac * |y1|), frac being the step's
+   share of the parameter range. Summed over the steps this is at most
+   atol + rtol * (|L| + sum of |increments|) = atol + 2 rtol |L| for a
+   nonnegative source, which is what makes rtol a bound on the global error
+   (the optical-depth form adds local errors without amplifying them). The
+   result is the largest error / tolerance: <= 1 accepts. Muñoz's and
+   Gonterman's rules measure the error their own way (Munoz 2014 eq. 11-12:
+   relative to |y1|; Gonterman 2010 eq. 3.4: per unit step). */
+static hrm_real hrm__ratio(const hrm__ctx *c, hrm_control control, hrm_real frac,
+                           const hrm_real *y0, const hrm_real *y1, const hrm_real *err)
+{
+    hrm_real worst = 0;
+    int n;
+    for (n = 0; n < HRM__NY; ++n) {
+        hrm_real atol = n >= HRM__CH ? c->atol : 0, tol, e = HRM_FABS(err[n]);
+        hrm_real inc = HRM_FABS(y1[n] - y0[n]), big = frac * HRM_FABS(y1[n]);
+        if (control == HRM_CONTROL_MUNOZ)
+            tol = atol + c->rtol * HRM_FABS(y1[n]);
+        else if (control == HRM_CONTROL_GONTERMAN)
+            tol = frac * (atol + c->rtol * HRM_FABS(y1[n]));
+        else
+            tol = atol * frac + c->rtol * (inc > big ? inc : big);
+        if (e > 0) {
+            hrm_real r = tol > 0 ? e / tol : HRM__R(1e30);
+            if (r > worst) worst = r;
+        }
+    }
+    return worst;
+}
+
+static hrm_real hrm__clamp(hrm_real x, hrm_real lo, hrm_real hi)
+{
+    return x < lo ? lo : x > hi ? hi : x;
+}
+
+static void hrm__warn(hrm__ctx *c, hrm_status w)
+{
+    if (c->warning == HRM_OK || c->warning == HRM_WARN_RTOL_CLIPPED) c->warning = w;
+}
+
+/* Adaptive Runge-Kutta driver. The last step lands exactly on the end; when
+   the budget has room for one more step only, that step goes to the end
+   unchecked (HRM_WARN_MAX_EVALS); a step refused at h_min is taken anyway
+   (HRM_WARN_H_MIN). */
+static void hrm__ivp_adaptive(hrm__ctx *c, const hrm__tableau *tb, hrm_control control,
+                              hrm_real h0, hrm_real y[HRM__NY])
+{
+    hrm_real from = c->rte ? c->pb : c->pa, to = c->rte ? c->pa : c->pb;
+    hrm_real P = HRM_FABS(to - from), dir = to > from ? 1 : -1, p = from;
+    hrm_real ynew[HRM__NY], err[HRM__NY], r_prev = 1, h;
+    hrm_real kk = (hrm_real)tb->k;
+    hrm__pt start, end;
+    int cost = hrm__stage_cost(tb), have = 0, after_reject = 0;
+
+    hrm__ivp_init(c, y);
+    h = h0 > 0 ? h0 : P * HRM__R(0.5) * HRM_POW(c->rtol, 1 / (kk + 1));
+    h = hrm__clamp(h, c->h_min, c->h_max);
+    while (p != to) {
+        hrm_real rem = HRM_FABS(to - p), hs, q, ratio, fac;
+        int forced = c->stats.evals + 2 * (cost + 1) > c->max_evals, accept;
+        if (forced) hrm__warn(c, HRM_WARN_MAX_EVALS);
+        hs = forced || h * HRM__R(1.1) >= rem ? rem : h; /* no sliver at the end */
+        q = hs == rem ? to : p + dir * hs;
+        if (!have) hrm__eval(c, p, &start);
+        have = 1;
+        if (hrm__rk_step(c, tb, &start, &end, p, q, y, ynew, err) == 0) have = 0;
+        if (c->status != HRM_OK) return;
+        ratio = hrm__ratio(c, control, hs / P, y, ynew, err);
+        accept = ratio <= 1 || forced;
+        if (!accept && hs <= c->h_min) {
+            accept = 1;
+            hrm__warn(c, HRM_WARN_H_MIN);
+        }
+        if (control == HRM_CONTROL_MUNOZ) {
+            /* Munoz 2014 eq. 12 with e_i the relative error. */
+            fac = HRM__R(0.99) * c->rtol / (ratio * c->rtol + HRM__R(0.01));
+        } else if (control == HRM_CONTROL_GONTERMAN) {
+            fac = ratio > 0 ? HRM__R(0.9) * HRM_POW(ratio, -1 / kk) : HRM__R(1e30);
+        } else if (accept) {
+            /* PI control (Gustafsson 1991), exponents 0.7/k and 0.4/k. */
+            hrm_real r = ratio > HRM__R(1e-10) ? ratio : HRM__R(1e-10);
+            fac = HRM__R(0.9) * HRM_POW(r, -HRM__R(0.7) / kk) * HRM_POW(r_prev, HRM__R(0.4) / kk);
+            fac = hrm__clamp(fac, HRM__R(0.2), after_reject ? 1 : 5);
+            r_prev = r > HRM__R(1e-4) ? r : HRM__R(1e-4);
+        } else {
+            fac = hrm__clamp(HRM__R(0.9) * HRM_POW(ratio, -1 / kk), HRM__R(0.2), HRM__R(0.9));
+        }
+        if (accept) {
+            memcpy(y, ynew, sizeof ynew);
+            p = q;
+            if (have) start = end;
+            c->stats.steps++;
+            after_reject = 0;
+        } else {
+            have = 1; /* the start sample stands */
+            c->stats.rejected++;
+            after_reject = 1;
+        }
+        h = hrm__clamp(hs * fac, c->h_min, c->h_max);
+    }
+}
+
+/* ---------------------------------------------------------------------- */
+/* Adaptive quadrature                                                     */
+/* ---------------------------------------------------------------------- */
+
+#define HRM__MAX_DEPTH 60
+
+/* Nested Simpson (Munoz 2014 eq. 7): Simpson against the trapezoid rule on
+   the same three points, e = |S - T|; a refused interval is halved and
+   keeps its three samples, so a split costs two new evaluations. Intervals
+   are finished left to right, so tau at an interval's left end is final and
+   its nodes' tau come from its own sigma_t samples as in hrm__simpson. */
+typedef struct hrm__ns_iv {
+    hrm__pt a, m, b;
+    int depth;
+} hrm__ns_iv;
+
+static void hrm__nested_simpson(hrm__ctx *c, int panels, hrm_real acc[HRM__NY])
+{
+    hrm__ns_iv stack[HRM__MAX_DEPTH + 1], cur;
+    hrm_real span = c->pb - c->pa;
+    int top = 0, k, i;
+
+    hrm__fill(acc, HRM__NY, 0);
+    hrm__eval(c, c->pa, &cur.b);
+    for (i = 0; i < HRM__CH; ++i) acc[i] = c->closed ? cur.b.tau[i] : 0;
+    for (k = 0; k < panels; ++k) {
+        hrm_real pr = k + 1 == panels ? c->pb : c->pa + span * ((hrm_real)(k + 1) / (hrm_real)panels);
+        cur.a = cur.b;
+        hrm__eval(c, pr, &cur.b);
+        hrm__eval(c, (cur.a.p + pr) / 2, &cur.m);
+        cur.depth = 0;
+        for (;;) {
+            hrm_real H = cur.b.p - cur.a.p, val[HRM__NY], err[HRM__NY], y1[HRM__NY], ratio;
+            int split;
+            for (i = 0; i < HRM__CH; ++i) {
+                hrm_real ta = acc[i], tm, tb, fa, fm, fb;
+                if (c->closed) {
+                    tm = cur.m.tau[i];
+                    tb = cur.b.tau[i];
+                } else {
+                    tb = ta + H / 6 * (cur.a.gs[i] + 4 * cur.m.gs[i] + cur.b.gs[i]);
+                    tm = ta + H / 24 * (5 * cur.a.gs[i] + 8 * cur.m.gs[i] - cur.b.gs[i]);
+                    tb = tb < ta ? ta : tb;
+                    tm = hrm__clamp(tm, ta, tb);
+                }
+                fa = HRM_EXP(-ta) * cur.a.gq[i];
+                fm = HRM_EXP(-tm) * cur.m.gq[i];
+                fb = HRM_EXP(-tb) * cur.b.gq[i];
+                val[i] = tb - ta;
+                err[i] = c->closed ? 0 : val[i] - H / 4 * (cur.a.gs[i] + 2 * cur.m.gs[i] + cur.b.gs[i]);
+                val[HRM__CH + i] = H / 6 * (fa + 4 * fm + fb);
+                err[HRM__CH + i] = val[HRM__CH + i] - H / 4 * (fa + 2 * fm + fb);
+            }
+            for (i = 0; i < HRM__NY; ++i) y1[i] = acc[i] + val[i];
+            ratio = hrm__ratio(c, HRM_CONTROL_PI, HRM_FABS(H / span), acc, y1, err);
+            split = ratio > 1;
+            if (split && (cur.depth >= HRM__MAX_DEPTH || HRM_FABS(H) / 2 < c->h_min)) {
+                hrm__warn(c, cur.depth >= HRM__MAX_DEPTH ? HRM_WARN_STORAGE : HRM_WARN_H_MIN);
+                split = 0;
+            }
+            if (split && c->stats.evals + 2 + 2 * (long)(panels - 1 - k) > c->max_evals) {
+                hrm__warn(c, HRM_WARN_MAX_EVALS);
+                split = 0;
+            }
+            if (!split) {
+                memcpy(acc, y1, sizeof y1);
+                c->stats.steps++;
+                if (top == 0) break;
+                cur = stack[--top];
+            } else {
+                hrm__ns_iv right;
+                right.a = cur.m;
+                right.b = cur.b;
+                right.depth = cur.depth + 1;
+                hrm__eval(c, (cur.m.p + cur.b.p) / 2, &right.m);
+                cur.b = cur.m;
+                hrm__eval(c, (cur.a.p + cur.b.p) / 2, &cur.m);
+                cur.depth++;
+                stack[top++] = right;
+                c->stats.rejected++;
+            }
+            if (c->status != HRM_OK) return;
+        }
+    }
+}
+
+/* Gauss-Kronrod G7/K15 on [-1, 1]: the positive K15 nodes, their weights,
+   and the G7 weights of the nodes xgk[1], xgk[3], xgk[5], 0 (Piessens et
+   al. 1983, QUADPACK qk15). */
+static const hrm_real hrm__xgk[8] = {
+    0.991455371120812639206854697526329, 0.949107912342758524526189684047851,
+    0.864864423359769072789712788640926, 0.741531185599394439863864773280788,
+    0.586087235467691130294144845693013, 0.405845151377397166906606412076961,
+    0.207784955007898467600689403773245, 0};
+static const hrm_real hrm__wgk[8] = {
+    0.022935322010529224963732008058970, 0.063092092629978553290700663189204,
+    0.104790010322250183839876322541518, 0.140653259715525918745189590510238,
+    0.169004726639267902826583426598550, 0.190350578064785409913256402421014,
+    0.204432940075298892414161999234649, 0.209482141084727828012999174891714};
+static const hrm_real hrm__wg[4] = {
+    0.129484966168869693270611432679082, 0.279705391489276667901467771423780,
+    0.381830050505118944950369775488975, 0.417959183673469387755102040816327};
+
+/* tau at the K15 nodes from the same sigma_t samples, at the rule's own
+   order: row k integrates the degree-14 interpolant of the 15 samples
+   (nodes ascending) from -1 to node k. Derived from the nodes above by
+   solving the moment equations in 60-digit arithmetic. */
+static const hrm_real hrm__gk_tau[15 * 15] = {
+    1.03981052571528020e-02, -2.83769996283116761e-03, 1.62788193298481925e-03, -1.11841594714680325e-03, 8.45482170423812371e-04, -6.66001240133393471e-04, 5.32680720730747438e-04, -4.30041676019444997e-04, 3.48989628422702184e-04, -2.80737088267947129e-04, 2.19579858925692716e-04, -1.64513471435547557e-04, 1.15766632496470633e-04, -7.01728856955884225e-05, 2.37249495802066603e-05,
+    2.59676963544380954e-02, 2.89875870535199719e-02, -6.27697160882417261e-03, 3.73995774299085539e-03, -2.68023068806569169e-03, 2.05710230908247391e-03, -1.62137543376796684e-03, 1.29718279755412997e-03, -1.04651322220011703e-03, 8.38503193963724522e-04, -6.54039450176873024e-04, 4.89084267608792854e-04, -3.43721602645067541e-04, 2.08186242500220495e-04, -7.03602987368992560e-05,
+    2.10599038857128759e-02, 7.07105324151710846e-02, 5.00573892969998213e-02, -1.03156106672409823e-02, 6.09949512399137091e-03, -4.31472273996388270e-03, 3.25691411481426798e-03, -2.53940842894569011e-03, 2.01527612105997789e-03, -1.59712331800328428e-03, 1.23646392203085177e-03, -9.19841684291590857e-04, 6.44210468122750944e-04, -3.89363950916298929e-04, 1.31462081689653302e-04,
+    2.42361841520569617e-02, 5.86298373985222609e-02, 1.15772886460054306e-01, 6.88096505007365078e-02, -1.37058744019498586e-02, 7.85917909244863294e-03, -5.40850940628008568e-03, 4.01068356429491821e-03, -3.08798503965356354e-03, 2.40012223793888580e-03, -1.83413561933193315e-03, 1.35247571776085803e-03, -9.41674029335289064e-04, 5.67143618117730490e-04, -1.91169844774781038e-04,
+    2.19798996704970509e-02, 6.61632913922189508e-02, 9.85944173781882344e-02, 1.54281109069179939e-01, 8.34799022449225353e-02, -1.59578818165279600e-02, 8.84168511858526157e-03, -5.95436655325001871e-03, 4.35037688885598663e-03, -3.27595449198800391e-03, 2.45305274072773116e-03, -1.78470449783212841e-03, 1.23177661238402193e-03, -7.37994393805901146e-04, 2.48155170153167447e-04,
+    2.36791640034627604e-02, 6.07765649633377480e-02, 1.09085903509984733e-01, 1.33009801043256881e-01, 1.84981283957081966e-01, 9.42381352810250927e-02, -1.73600808733072424e-02, 9.40125173691372037e-03, -6.23525912547830997e-03, 4.45482244064482075e-03, -3.23169297372776984e-03, 2.30432284193334610e-03, -1.57020300006580115e-03, 9.33719392744436754e-04, -3.12884575203547480e-04,
+    2.23317819580927633e-02, 6.49366741874042169e-02, 1.01516111104036494e-01, 1.45960556314527978e-01, 1.60089011532322550e-01, 2.08140264531676472e-01, 1.01532689898125916e-01, -1.82882132069951790e-02, 9.75431889378732334e-03, -6.32660677307881215e-03, 4.35470331563592682e-03, -3.00922255514957148e-03, 2.01163520001652494e-03, -1.18315104249449351e-03, 3.94491634193419312e-04,
+    2.34274478211548287e-02, 6.16051040320834478e-02, 1.07360685303677469e-01, 1.36690329643342851e-01, 1.75047571388848411e-01, 1.80674995628903823e-01, 2.23002257024795453e-01, 1.04741070542363909e-01, -1.85693169494965671e-02, 9.67558243588159325e-03, -6.04284474958050391e-03, 3.96293007218306154e-03, -2.57067498142728341e-03, 1.48698859789510264e-03, -4.92125810625604235e-04,
+    2.25408303763358041e-02, 6.42752436724730453e-02, 1.02778375122233659e-01, 1.43662482270675490e-01, 1.64650023323631989e-01, 1.96677184837864227e-01, 1.94678621181511580e-01, 2.27770354291723015e-01, 1.02900250177172969e-01, -1.77896864668910595e-02, 8.91571510694534955e-03, -5.30729659900206537e-03, 3.27389921821368869e-03, -1.84458155742565737e-03, 6.03540052436463007e-04,
+    2.32482065857327717e-02, 6.21583732372341172e-02, 1.06360213322315988e-01, 1.38348936873592565e-01, 1.72236419612995684e-01, 1.85895755624140596e-01, 2.10668199200777201e-01, 2.00080889347814095e-01, 2.21793020948606145e-01, 9.61124427837603268e-02, -1.59765573178140656e-02, 7.64345867226903092e-03, -4.29589318773454260e-03, 2.31552766664080241e-03, -7.43841992933535925e-04,
+    2.26871668403760586e-02, 6.38300870237844542e-02, 1.03558233709866165e-01, 1.42437964213358054e-01, 1.66551673898540170e-01, 1.93626532556773423e-01, 2.00082563186442908e-01, 2.15436507637977837e-01, 1.95591254956713617e-01, 2.06308459881313383e-01, 8.55248243943453751e-02, -1.36278493536540288e-02, 6.19559294406194817e-03, -3.07119876224039344e-03, 9.55422340032172383e-04,
+    2.31264918553040072e-02, 6.25249490118608281e-02, 1.05731684351585475e-01, 1.39300783997765049e-01, 1.70838862258599844e-01, 1.87950455826846524e-01, 2.07520925114952459e-01, 2.05471457520432915e-01, 2.09841449481578984e-01, 1.82491398972336766e-01, 1.82710601041217752e-01, 7.18436092147894112e-02, -1.09828761378041283e-02, 4.46225523145629081e-03, -1.30086214152773643e-03,
+    2.28038599288395705e-02, 6.34814565808948517e-02, 1.04145799854127433e-01, 1.41573101399817519e-01, 1.67768262717237049e-01, 1.91947701382788688e-01, 2.02417663954238908e-01, 2.12021549513673524e-01, 2.01176025960484617e-01, 1.94665300804749281e-01, 1.62905231515276527e-01, 1.50968870382766907e-01, 5.47326210252503664e-02, -7.61843978519253541e-03, 1.87541812481634780e-03,
+    2.30056823092661226e-02, 6.28839063874783305e-02, 1.05133731924895252e-01, 1.40164175447917122e-01, 1.69658766089444774e-01, 1.89512074870821695e-01, 2.05479453297499004e-01, 2.08184958287173705e-01, 2.06054315509066860e-01, 1.88293475755702933e-01, 1.71684957327333604e-01, 1.36913301972535068e-01, 1.11066981931074352e-01, 3.41045055764585825e-02, -3.03237434390886927e-03,
+    2.29115970609490190e-02, 6.31622655156741375e-02, 1.04674243689753713e-01, 1.40817773186961454e-01, 1.68785146780342205e-01, 1.90631315153053343e-01, 2.04083950446876189e-01, 2.09912182760747273e-01, 2.03900259354568153e-01, 1.91016579304918804e-01, 1.68159244468844088e-01, 1.41771675662672736e-01, 1.03162128389265362e-01, 6.59297925928097189e-02, 1.25372167533764223e-02,
+};
+
+/* The 15 nodes on [-1, 1] in ascending order, with Kronrod and Gauss
+   weights (0 off the Gauss nodes). */
+static void hrm__gk_node(int j, hrm_real *x, hrm_real *wk, hrm_real *wg)
+{
+    int i = j < 7 ? j : 14 - j; /* index into the positive half */
+    *x = j < 7 ? -hrm__xgk[i] : hrm__xgk[i];
+    *wk = hrm__wgk[i];
+    *wg = (i % 2 == 1) ? hrm__wg[i / 2] : (i == 7 ? hrm__wg[3] : 0);
+}
+
+/* K15 over [a, b] of y = (tau, L) given tau at a (tau_a; a closed form
+   ignores it). K receives the increments; ek the plain |K - G| (Munoz),
+   eq QUADPACK's estimate (scaled by the integrand's variation, at least 50
+   epsilons of the integral of |f|). */
+static void hrm__gk15(hrm__ctx *c, hrm_real a, hrm_real b, const hrm_real *tau_a,
+                      hrm_real *K, hrm_real *ek, hrm_real *eq)
+{
+    hrm__pt pt[15];
+    hrm_real hl = (b - a) / 2, mid = (a + b) / 2, x, wk, wg;
+    int j, l, n;
+
+    for (j = 0; j < 15; ++j) {
+        hrm__gk_node(j, &x, &wk, &wg);
+        hrm__eval(c, j == 7 ? mid : mid + hl * x, &pt[j]);
+    }
+    for (n = 0; n < HRM__NY; ++n) {
+        int ch = n % HRM__CH, is_tau = n < HRM__CH;
+        hrm_real f[15], rk = 0, rg = 0, rabs = 0, rasc = 0, mean;
+        for (j = 0; j < 15; ++j) {
+            if (is_tau) {
+                f[j] = pt[j].gs[ch];
+            } else {
+                hrm_real t;
+                if (c->closed) {
+                    t = pt[j].tau[ch];
+                } else {
+                    t = 0;
+                    for (l = 0; l < 15; ++l) t += hrm__gk_tau[j * 15 + l] * pt[l].gs[ch];
+                    t = tau_a[ch] + (t * hl > 0 ? t * hl : 0);
+                }
+                f[j] = HRM_EXP(-t) * pt[j].gq[ch];
+            }
+            hrm__gk_node(j, &x, &wk, &wg);
+            rk += wk * f[j];
+            rg += wg * f[j];
+            rabs += wk * HRM_FABS(f[j]);
+        }
+        mean = rk / 2;
+        for (j = 0; j < 15; ++j) {
+            hrm__gk_node(j, &x, &wk, &wg);
+            rasc += wk * HRM_FABS(f[j] - mean);
+        }
+        K[n] = rk * hl;
+        ek[n] = HRM_FABS((rk - rg) * hl);
+        eq[n] = ek[n];
+        rasc *= HRM_FABS(hl);
+        rabs *= HRM_FABS(hl);
+        if (rasc != 0 && eq[n] != 0) {
+            hrm_real r = HRM_POW(200 * eq[n] / rasc, HRM__R(1.5));
+            eq[n] = rasc * (r < 1 ? r : 1);
+        }
+        if (eq[n] < 50 * HRM__EPS * rabs) eq[n] = 50 * HRM__EPS * rabs;
+    }
+}
+
+/* Gauss-Kronrod, Munoz's local mode: an interval whose |K - G| exceeds its
+   share of the tolerance is split in two and its 15 samples are discarded.
+   Intervals finish left to right, so tau at each left end is final. */
+static void hrm__gk_local(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
+{
+    hrm_real stack_a[HRM__MAX_DEPTH + 2], stack_b[HRM__MAX_DEPTH + 2];
+    int stack_d[HRM__MAX_DEPTH + 2];
+    hrm_real span = c->pb - c->pa;
+    int top, k, i;
+
+    hrm__fill(acc, HRM__NY, 0);
+    for (k = 0; k < n0; ++k) {
+        stack_a[0] = c->pa + span * ((hrm_real)k / (hrm_real)n0);
+        stack_b[0] = k + 1 == n0 ? c->pb : c->pa + span * ((hrm_real)(k + 1) / (hrm_real)n0);
+        stack_d[0] = 0;
+        top = 1;
+        while (top > 0) {
+            hrm_real a = stack_a[top - 1], b = stack_b[top - 1];
+            hrm_real K[HRM__NY], ek[HRM__NY], eq[HRM__NY], y1[HRM__NY], ratio;
+            int d = stack_d[--top], split;
+            long reserve = 15 * ((long)top + 2 + (long)(n0 - 1 - k));
+            hrm__gk15(c, a, b, acc, K, ek, eq);
+            if (c->status != HRM_OK) return;
+            for (i = 0; i < HRM__NY; ++i) y1[i] = acc[i] + K[i];
+            ratio = hrm__ratio(c, HRM_CONTROL_PI, HRM_FABS((b - a) / span), acc, y1, ek);
+            split = ratio > 1;
+            if (split && (d >= HRM__MAX_DEPTH || HRM_FABS(b - a) / 2 < c->h_min)) {
+                hrm__warn(c, d >= HRM__MAX_DEPTH ? HRM_WARN_STORAGE : HRM_WARN_H_MIN);
+                split = 0;
+            }
+            if (split && c->stats.evals + reserve > c->max_evals) {
+                hrm__warn(c, HRM_WARN_MAX_EVALS);
+                split = 0;
+            }
+            if (split) {
+                stack_a[top] = (a + b) / 2;
+                stack_b[top] = b;
+                stack_d[top++] = d + 1;
+                stack_a[top] = a;
+                stack_b[top] = (a + b) / 2;
+                stack_d[top++] = d + 1;
+                c->stats.rejected++;
+            } else {
+                memcpy(acc, y1, sizeof y1);
+                c->stats.steps++;
+            }
+        }
+    }
+}
+
+/* Gauss-Kronrod, global mode (QUADPACK QAG): bisect the interval with the
+   largest error until the summed estimate meets the tolerance. Without a
+   closed form each interval stores its integral relative to tau at its own
+   left end, and the intervals are kept in order so that the factor
+   exp(-tau(left end)) follows every refinement to their left. */
+#define HRM__GK_LIMIT 128
+typedef struct hrm__gk_iv {
+    hrm_real a, b, K[HRM__NY], E[HRM__NY];
+} hrm__gk_iv;
+
+static void hrm__gk_global(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
+{
+    hrm__gk_iv iv[HRM__GK_LIMIT];
+    hrm_real zero[HRM__NY], span = c->pb - c->pa, ek[HRM__NY];
+    int n = n0 < HRM__GK_LIMIT ? n0 : HRM__GK_LIMIT, i, j, ch, roundoff = 0, stop = 0;
+
+    hrm__fill(zero, HRM__NY, 0);
+    for (i = 0; i < n; ++i) {
+        iv[i].a = c->pa + span * ((hrm_real)i / (hrm_real)n);
+        iv[i].b = i + 1 == n ? c->pb : c->pa + span * ((hrm_real)(i + 1) / (hrm_real)n);
+        hrm__gk15(c, iv[i].a, iv[i].b, zero, iv[i].K, ek, iv[i].E);
+        c->stats.steps++;
+    }
+    for (;;) {
+        hrm_real tau[HRM__CH], L[HRM__CH], EL[HRM__CH], Et[HRM__CH];
+        hrm_real tolL[HRM__CH], tolt[HRM__CH], worst = -1;
+        int pick = -1, done = 1;
+        hrm__gk_iv left, right;
+        if (c->status != HRM_OK) return;
+        hrm__fill(tau, HRM__CH, 0);
+        hrm__fill(L, HRM__CH, 0);
+        hrm__fill(EL, HRM__CH, 0);
+        hrm__fill(Et, HRM__CH, 0);
+        for (i = 0; i < n; ++i)
+            for (ch = 0; ch < HRM__CH; ++ch) {
+                hrm_real f = c->closed ? 1 : HRM_EXP(-tau[ch]);
+                L[ch] += f * iv[i].K[HRM__CH + ch];
+                EL[ch] += f * iv[i].E[HRM__CH + ch];
+                tau[ch] += iv[i].K[ch];
+                Et[ch] += iv[i].E[ch];
+            }
+        for (ch = 0; ch < HRM__CH; ++ch) {
+            tolL[ch] = c->rtol * HRM_FABS(L[ch]);
+            tolL[ch] = tolL[ch] > c->atol ? tolL[ch] : c->atol;
+            tolt[ch] = c->rtol * HRM_FABS(tau[ch]);
+            done &= EL[ch] <= tolL[ch] && Et[ch] <= tolt[ch];
+            acc[ch] = tau[ch];
+            acc[HRM__CH + ch] = L[ch];
+        }
+        if (done || stop) return;
+        hrm__fill(tau, HRM__CH, 0);
+        for (i = 0; i < n; ++i) {
+            hrm_real score = 0;
+            for (ch = 0; ch < HRM__CH; ++ch) {
+                hrm_real f = c->closed ? 1 : HRM_EXP(-tau[ch]);
+                hrm_real sL = f * iv[i].E[HRM__CH + ch], st = iv[i].E[ch];
+                sL = tolL[ch] > 0 ? sL / tolL[ch] : sL * HRM__R(1e30);
+                st = tolt[ch] > 0 ? st / tolt[ch] : st * HRM__R(1e30);
+                score = score > sL ? score : sL;
+                score = score > st ? score : st;
+                tau[ch] += iv[i].K[ch];
+            }
+            if (score > worst) {
+                worst = score;
+                pick = i;
+            }
+        }
+        if (n == HRM__GK_LIMIT) {
+            hrm__warn(c, HRM_WARN_STORAGE);
+            return;
+        }
+        if (c->stats.evals + 30 > c->max_evals) {
+            hrm__warn(c, HRM_WARN_MAX_EVALS);
+            return;
+        }
+        if (HRM_FABS(iv[pick].b - iv[pick].a) / 2 < c->h_min) {
+            hrm__warn(c, HRM_WARN_H_MIN);
+            return;
+        }
+        left.a = iv[pick].a;
+        left.b = right.a = (iv[pick].a + iv[pick].b) / 2;
+        right.b = iv[pick].b;
+        hrm__gk15(c, left.a, left.b, zero, left.K, ek, left.E);
+        hrm__gk15(c, right.a, right.b, zero, right.K, ek, right.E);
+        /* Round-off (QUADPACK qag): the halves reproduce the parent's value
+           while their error does not drop. */
+        for (ch = 0; ch < HRM__CH; ++ch) {
+            hrm_real f = c->closed ? 1 : HRM_EXP(-left.K[ch]); /* right is relative to its left end */
+            hrm_real sum = left.K[HRM__CH + ch] + f * right.K[HRM__CH + ch];
+            hrm_real esum = left.E[HRM__CH + ch] + f * right.E[HRM__CH + ch];
+            if (HRM_FABS(iv[pick].K[HRM__CH + ch] - sum) <= HRM__R(1e-5) * HRM_FABS(sum) &&
+                esum >= HRM__R(0.99) * iv[pick].E[HRM__CH + ch] && esum > 0) {
+                roundoff++;
+                break;
+            }
+        }
+        for (j = n; j > pick + 1; --j) iv[j] = iv[j - 1];
+        iv[pick] = left;
+        iv[pick + 1] = right;
+        n++;
+        c->stats.steps++;
+        c->stats.rejected++;
+        if (roundoff >= 10) {
+            hrm__warn(c, HRM_WARN_ROUNDOFF);
+            stop = 1;
+        }
     }
 }
 
@@ -840,8 +1435,13 @@ HRM__DEF hrm_options hrm_default_options(hrm_method method)
     hrm_options o;
     memset(&o, 0, sizeof o);
     o.method = method == HRM_METHOD_DEFAULT ? HRM_SIMPSON : method;
-    o.steps = 32;
+    o.steps = o.method == HRM_NESTED_SIMPSON ? 4 : o.method == HRM_GAUSS_KRONROD ? 1
+            : o.method >= HRM_BOGACKI_SHAMPINE ? 0 : 32;
     o.form = HRM_FORM_OPTICAL_DEPTH;
+    o.rtol = HRM__R(1e-4);
+    o.max_evals = 100000;
+    o.control = HRM_CONTROL_PI;
+    o.gk_mode = HRM_GK_GLOBAL;
     return o;
 }
 
@@ -860,6 +1460,17 @@ static hrm_status hrm__resolve(const hrm_options *in, hrm_options *o)
     if (o->steps == 0) o->steps = d.steps;
     if ((int)o->form < 0 || (int)o->form > (int)HRM_FORM_RTE) return HRM_ERR_BAD_OPTION;
     if (o->form == HRM_FORM_DEFAULT) o->form = HRM_FORM_OPTICAL_DEPTH;
+    if ((int)o->control < 0 || (int)o->control > (int)HRM_CONTROL_GONTERMAN) return HRM_ERR_BAD_OPTION;
+    if (o->control == HRM_CONTROL_DEFAULT) o->control = d.control;
+    if ((int)o->gk_mode < 0 || (int)o->gk_mode > (int)HRM_GK_LOCAL) return HRM_ERR_BAD_OPTION;
+    if (o->gk_mode == HRM_GK_DEFAULT) o->gk_mode = d.gk_mode;
+    if (!(HRM__FINITE(o->rtol) && o->rtol >= 0 && HRM__FINITE(o->atol) && o->atol >= 0 &&
+          HRM__FINITE(o->h_min) && o->h_min >= 0 && HRM__FINITE(o->h_max) && o->h_max >= 0 &&
+          HRM__FINITE(o->h0) && o->h0 >= 0 && o->max_evals >= 0))
+        return HRM_ERR_BAD_OPTION;
+    if (o->h_max > 0 && o->h_min > o->h_max) return HRM_ERR_BAD_OPTION;
+    if (o->rtol == 0) o->rtol = d.rtol;
+    if (o->max_evals == 0) o->max_evals = d.max_evals;
     return HRM_OK;
 }
 
@@ -893,8 +1504,21 @@ static hrm_status hrm__run(const hrm_medium *m, hrm_real t0, hrm_real t1,
     c.rng = o.seed;
     c.homog = (m->flags & HRM_MEDIUM_HOMOGENEOUS) != 0;
     c.per_length = (m->flags & HRM_EMISSION_PER_LENGTH) != 0;
-    c.rte = o.form == HRM_FORM_RTE &&
-            (o.method == HRM_EULER || o.method == HRM_RK4 || o.method == HRM_ADAMS_BASHFORTH);
+    c.rte = o.form == HRM_FORM_RTE && o.method != HRM_RECTANGLE && o.method != HRM_SIMPSON &&
+            o.method != HRM_MONTE_CARLO && o.method != HRM_NESTED_SIMPSON &&
+            o.method != HRM_GAUSS_KRONROD;
+    /* Tolerances: below 100 epsilons round-off dominates any estimate. */
+    c.rtol = o.rtol;
+    if (c.rtol < 100 * HRM__EPS && o.method >= HRM_NESTED_SIMPSON) {
+        c.rtol = 100 * HRM__EPS;
+        c.warning = HRM_WARN_RTOL_CLIPPED;
+    }
+    c.atol = o.atol;
+    c.max_evals = o.max_evals;
+    c.h_max = o.h_max > 0 && o.h_max < c.T ? o.h_max : c.T;
+    c.h_min = o.h_min > 0 ? o.h_min
+            : o.control == HRM_CONTROL_MUNOZ ? c.T / 1024 : c.T * HRM__R(1e-9);
+    if (c.h_min > c.h_max) c.h_min = c.h_max;
     if (c.homog) {
         for (i = 0; i < HRM__CH; ++i) {
             c.sa[i] = m->const_sigma_a[i];
@@ -912,6 +1536,13 @@ static hrm_status hrm__run(const hrm_medium *m, hrm_real t0, hrm_real t1,
     c.closed = c.homog || (m->transmittance && !c.rte);
     c.need_st = !c.closed || c.rte;
 
+    /* A budget below one step of the method could not be honoured. */
+    if (o.max_evals < (o.method == HRM_NESTED_SIMPSON ? 2L * o.steps + 1
+                       : o.method == HRM_GAUSS_KRONROD ? 15L * o.steps
+                       : o.method >= HRM_BOGACKI_SHAMPINE
+                           ? hrm__stage_cost(&hrm__pairs[o.method - HRM_BOGACKI_SHAMPINE]) + 1L
+                           : 0L))
+        return HRM_ERR_BAD_OPTION;
     if (t0 == t1) return HRM_OK;
     if (!c.use_le && !c.use_li && c.closed) {
         /* Nothing to integrate: only the closed-form Tr. */
@@ -944,6 +1575,27 @@ static hrm_status hrm__run(const hrm_medium *m, hrm_real t0, hrm_real t1,
                        o.method == HRM_ADAMS_BASHFORTH, o.steps, y);
         ivp = 1;
         break;
+    case HRM_NESTED_SIMPSON:
+    case HRM_GAUSS_KRONROD:
+        if (o.method == HRM_NESTED_SIMPSON)
+            hrm__nested_simpson(&c, o.steps, y);
+        else if (o.gk_mode == HRM_GK_LOCAL)
+            hrm__gk_local(&c, o.steps, y);
+        else
+            hrm__gk_global(&c, o.steps, y);
+        for (i = 0; i < HRM__CH; ++i) {
+            L[i] = y[HRM__CH + i];
+            tau[i] = y[i];
+        }
+        break;
+    case HRM_BOGACKI_SHAMPINE:
+    case HRM_DORMAND_PRINCE:
+    case HRM_FEHLBERG:
+    case HRM_CASH_KARP:
+    case HRM_VERNER:
+        hrm__ivp_adaptive(&c, &hrm__pairs[o.method - HRM_BOGACKI_SHAMPINE], o.control, o.h0, y);
+        ivp = 1;
+        break;
     default:
         return HRM_ERR_BAD_METHOD;
     }
@@ -967,7 +1619,7 @@ static hrm_status hrm__run(const hrm_medium *m, hrm_real t0, hrm_real t1,
         hrm__fill(Tr, HRM__CH, 1);
         return c.status;
     }
-    return HRM_OK;
+    return c.warning;
 }
 
 HRM__DEF hrm_status hrm_solve(const hrm_medium *medium, hrm_real t0, hrm_real t1,
