@@ -206,7 +206,9 @@ typedef HRM_REAL hrm_real;
     X(HRM_ERR_BAD_METHOD, -4, "unknown method")                              \
     X(HRM_ERR_BAD_OPTION, -5, "an option is out of range (form, tolerances, step bounds, budget)") \
     X(HRM_ERR_BAD_MEDIUM, -6, "a constant coefficient of the medium is negative or not finite") \
-    X(HRM_ERR_CALLBACK_VALUE, -7, "a callback returned NaN, an infinity, a negative coefficient or a transmittance outside [0,1]")
+    X(HRM_ERR_CALLBACK_VALUE, -7, "a callback returned NaN, an infinity, a negative coefficient or a transmittance outside [0,1]") \
+    X(HRM_ERR_BAD_WARP, -8, "warp parameters invalid: sigma_ref or D negative or not finite, a user warp without its callbacks or not increasing") \
+    X(HRM_ERR_SINGULAR, -9, "the equiangular light lies on the ray within [t0, t1] (D = 0): the integral diverges")
 
 typedef enum hrm_status {
 #define HRM__STATUS_ENUM(name, value, text) name = value,
@@ -260,6 +262,30 @@ typedef enum hrm_gk_mode {
     HRM_GK_LOCAL             /* Munoz 2014: recursive local split */
 } hrm_gk_mode;
 
+/* Importance sampling as a change of variable t = t(u) (Munoz 2014 s.5):
+   every method integrates over u, so fixed-step methods and Monte Carlo
+   place their samples uniformly in u and adaptive methods start from it. */
+typedef enum hrm_warp_kind {
+    HRM_WARP_NONE = 0,
+    HRM_WARP_DISTANCE,     /* u = 1 - exp(-sigma_ref (t - t0)) (eq. 13) */
+    HRM_WARP_EQUIANGULAR,  /* u = atan((t - delta) / D) (eq. 16) */
+    HRM_WARP_USER          /* t_of_u, dt_du, u_of_t below */
+} hrm_warp_kind;
+
+typedef struct hrm_warp {
+    hrm_warp_kind kind;
+    hrm_real sigma_ref; /* distance: 0 means the mean of sigma_t over the
+                           channels at t0 (one medium evaluation). Below the
+                           smallest normal number: no warp. */
+    hrm_real delta, D;  /* equiangular: the point light projects onto the
+                           ray at t = delta and lies D >= 0 from it (units
+                           of t; see hrm_equiangular_warp) */
+    void *user;         /* user warp: an increasing map u -> t and back */
+    hrm_real (*t_of_u)(void *user, hrm_real u);
+    hrm_real (*dt_du)(void *user, hrm_real u);
+    hrm_real (*u_of_t)(void *user, hrm_real t); /* may be called with t1 = +inf */
+} hrm_warp;
+
 /* Medium flags. */
 #define HRM_MEDIUM_HOMOGENEOUS   1u /* use const_sigma_a/_s, closed-form Tr */
 #define HRM_EMISSION_PER_LENGTH  2u /* source is Le itself, not sigma_a*Le */
@@ -300,14 +326,16 @@ typedef struct hrm_options {
     hrm_real rtol;      /* relative tolerance on L and tau. 0: 1e-4. Typical:
                            1e-2 (previews) to 1e-6; clipped at 100 epsilons */
     hrm_real atol;      /* absolute tolerance on L. 0: none */
-    hrm_real h_min;     /* smallest step or interval. 0: 1e-9 of the ray
-                           (1/1024 of it with HRM_CONTROL_MUNOZ) */
-    hrm_real h_max;     /* largest step or interval. 0: the whole ray */
+    hrm_real h_min;     /* smallest step or interval, in the integration
+                           variable (t, or u under a warp). 0: 64 epsilons
+                           of the range (1/1024 of it with HRM_CONTROL_MUNOZ) */
+    hrm_real h_max;     /* largest step or interval. 0: the whole range */
     hrm_real h0;        /* first step of the Runge-Kutta methods. 0: chosen
                            from rtol and the method's order */
     long max_evals;     /* source evaluation budget. 0: 100000 */
     hrm_control control;/* Runge-Kutta step control. 0: HRM_CONTROL_PI */
     hrm_gk_mode gk_mode;/* Gauss-Kronrod. 0: HRM_GK_GLOBAL */
+    hrm_warp warp;      /* importance sampling. 0: none */
 } hrm_options;
 
 typedef struct hrm_stats {
@@ -341,6 +369,15 @@ HRM_API hrm_status hrm_solve(const hrm_medium *medium, hrm_real t0, hrm_real t1,
 HRM_API hrm_status hrm_transmittance(const hrm_medium *medium, hrm_real t0,
                                      hrm_real t1, const hrm_options *options,
                                      hrm_real Tr[HRM_CHANNELS], hrm_stats *stats);
+
+/* Equiangular warp for a point light seen from the ray origin + t * dir
+   (dir need not be unit length; t, delta and D are in units of t): delta
+   from a dot product, D from a cross product, so a light near the ray
+   keeps its full precision. warp: required; overwritten whole.
+   Returns HRM_ERR_NULL_ARGUMENT, HRM_ERR_BAD_WARP (dir zero or a value not
+   finite) or HRM_OK. */
+HRM_API hrm_status hrm_equiangular_warp(const hrm_real origin[3], const hrm_real dir[3],
+                                        const hrm_real light[3], hrm_warp *warp);
 
 HRM_API const char *hrm_method_name(hrm_method method); /* "?" if unknown */
 HRM_API const char *hrm_status_string(hrm_status status); /* "unknown status" */
@@ -407,6 +444,20 @@ HRM_API int hrm_version(void);
 #ifndef HRM_ATAN
 #define HRM_ATAN(x) HRM__MATH1(atan, x)
 #endif
+#ifndef HRM_SIN
+#define HRM_SIN(x) HRM__MATH1(sin, x)
+#endif
+#ifndef HRM_COS
+#define HRM_COS(x) HRM__MATH1(cos, x)
+#endif
+#ifndef HRM_ATAN2
+#define HRM_ATAN2(y, x) (HRM__IS_FLOAT ? (hrm_real)atan2f((float)(y), (float)(x)) \
+                                       : (hrm_real)atan2((double)(y), (double)(x)))
+#endif
+#ifndef HRM_HYPOT
+#define HRM_HYPOT(x, y) (HRM__IS_FLOAT ? (hrm_real)hypotf((float)(x), (float)(y)) \
+                                       : (hrm_real)hypot((double)(x), (double)(y)))
+#endif
 #ifndef HRM_POW
 #define HRM_POW(x, y) (HRM__IS_FLOAT ? (hrm_real)powf((float)(x), (float)(y)) \
                                      : (hrm_real)pow((double)(x), (double)(y)))
@@ -447,6 +498,13 @@ typedef struct hrm__ctx {
     long max_evals;
     uint64_t rng;
     hrm_stats stats;
+    hrm_warp_kind warp;    /* the warp in use, after fallbacks */
+    hrm_real w_sigma;      /* distance */
+    hrm_real w_D, w_ra;    /* equiangular: D, distance from the light to t0 */
+    hrm_real w_cos_a, w_sin_a, w_cos_b, w_sin_b, w_ub; /* cos, sin of u(t0),
+                              u(t1); u(t1) itself (pi/2 for t1 = inf) */
+    const hrm_warp *uw;    /* user */
+    hrm_real s_end;        /* the last abscissa: t1, or s(pb) when t1 = inf */
 } hrm__ctx;
 
 static void hrm__fill(hrm_real *v, int n, hrm_real x)
@@ -472,12 +530,162 @@ static void hrm__check(hrm__ctx *c, hrm_real *v, int kind)
     }
 }
 
-/* The change of variable p -> s. Without a warp p is the distance from t0,
-   which keeps full precision for short rays far from the origin. */
-static void hrm__map(const hrm__ctx *c, hrm_real p, hrm_real *off, hrm_real *J)
+/* The change of variable p -> s, as the offset s - t0 (full precision for
+   short rays far from the origin) and ds/dp.
+   none:        p = s - t0.
+   distance:    p = 1 - exp(-sigma (s - t0)), the paper's u reflected so
+                that p grows with s and keeps its precision near t0.
+   equiangular: p = atan((s - delta) / D); s - t0 = D sin(p - pa) /
+                (cos p cos pa), free of the cancellation in
+                delta + D tan p - t0, with cos pa and sin pa exact.
+   user:        the host's callbacks. */
+static void hrm__map(hrm__ctx *c, hrm_real p, hrm_real *off, hrm_real *J)
 {
-    *off = p < c->T ? p : c->T;
-    *J = 1;
+    hrm_real o, j;
+    switch (c->warp) {
+    case HRM_WARP_DISTANCE:
+        o = -HRM_LOG1P(-p) / c->w_sigma;
+        j = 1 / (c->w_sigma * (1 - p));
+        break;
+    case HRM_WARP_EQUIANGULAR: {
+        /* cos p from the nearer end's exact cos and sin, moving away from
+           +-pi/2, where cos p is small and a plain cos(p) imprecise. */
+        hrm_real d = p - c->pa, e = c->w_ub - p, cp;
+        if (d <= e)
+            cp = c->w_cos_a * HRM_COS(d) - c->w_sin_a * HRM_SIN(d);
+        else
+            cp = c->w_cos_b * HRM_COS(e) + c->w_sin_b * HRM_SIN(e);
+        o = c->w_ra * HRM_SIN(d) / cp; /* D / cos(pa) = distance to t0 */
+        j = c->w_D / (cp * cp);
+        break;
+    }
+    case HRM_WARP_USER:
+        o = c->uw->t_of_u(c->uw->user, p) - c->t0;
+        j = c->uw->dt_du(c->uw->user, p);
+        if (!(HRM__FINITE(o) && HRM__FINITE(j) && j >= 0)) {
+            if (c->status == HRM_OK) c->status = HRM_ERR_CALLBACK_VALUE;
+            o = j = 0;
+        }
+        break;
+    default:
+        o = p;
+        j = 1;
+    }
+    *off = o < 0 ? 0 : o < c->T ? o : c->T;
+    *J = j;
+}
+
+/* Mean sigma_t over the channels at t0: the distance warp's default
+   sigma_ref (Munoz 2014 s.5), one medium evaluation. */
+static hrm_real hrm__sigma_ref(hrm__ctx *c)
+{
+    const hrm_medium *m = c->m;
+    hrm_real v[HRM__CH], w[HRM__CH], sum = 0;
+    int i;
+    if (c->homog) {
+        memcpy(v, c->st, sizeof v);
+    } else {
+        hrm__fill(v, HRM__CH, 0);
+        if (m->sigma_t) {
+            m->sigma_t(m->user, c->t0, v);
+            hrm__check(c, v, 1);
+        } else {
+            if (m->sigma_a) {
+                m->sigma_a(m->user, c->t0, v);
+                hrm__check(c, v, 1);
+            }
+            if (m->sigma_s) {
+                m->sigma_s(m->user, c->t0, w);
+                hrm__check(c, w, 1);
+                for (i = 0; i < HRM__CH; ++i) v[i] += w[i];
+            }
+        }
+        c->stats.medium_evals += m->sigma_t || m->sigma_a || m->sigma_s;
+    }
+    for (i = 0; i < HRM__CH; ++i) sum += v[i];
+    return sum / HRM__CH;
+}
+
+/* The parameter range [pa, pb] of the warp, with its fallbacks. An
+   infinite t1 maps to a finite end, pulled in by one rounding step so that
+   no callback ever sees infinity (the part of u dropped has measure of
+   order epsilon). */
+static hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_warp *w)
+{
+    int inf = !HRM__FINITE(c->T);
+    hrm_real T = c->T;
+    c->warp = w->kind;
+    c->pa = 0;
+    c->pb = T;
+    switch (w->kind) {
+    case HRM_WARP_NONE:
+        break;
+    case HRM_WARP_DISTANCE: {
+        hrm_real s = w->sigma_ref;
+        hrm_real tiny = HRM__IS_FLOAT ? HRM__R(FLT_MIN) : HRM__R(DBL_MIN);
+        if (!(HRM__FINITE(s) && s >= 0)) return HRM_ERR_BAD_WARP;
+        if (s == 0) s = hrm__sigma_ref(c);
+        if (!(s >= tiny)) { /* zero or denormal: no warp */
+            c->warp = HRM_WARP_NONE;
+            break;
+        }
+        c->w_sigma = s;
+        c->pb = inf ? 1 : -HRM_EXPM1(-s * T);
+        if (c->pb > 1 - HRM__EPS / 2) c->pb = 1 - HRM__EPS / 2;
+        break;
+    }
+    case HRM_WARP_EQUIANGULAR: {
+        hrm_real D = w->D, da = c->t0 - w->delta, db = c->t1 - w->delta, rb;
+        if (!(HRM__FINITE(D) && D >= 0 && HRM__FINITE(w->delta))) return HRM_ERR_BAD_WARP;
+        if (D == 0) {
+            if (w->delta >= c->t0 && w->delta <= c->t1) return HRM_ERR_SINGULAR;
+            c->warp = HRM_WARP_NONE; /* light on the ray's line, outside: 1/r^2 is smooth */
+            break;
+        }
+        c->w_D = D;
+        c->w_ra = HRM_HYPOT(da, D);
+        c->w_cos_a = D / c->w_ra;
+        c->w_sin_a = da / c->w_ra;
+        c->pa = HRM_ATAN2(da, D);
+        if (inf) {
+            c->w_cos_b = 0;
+            c->w_sin_b = 1;
+            c->w_ub = HRM__R(1.5707963267948966);
+            c->pb = c->w_ub * (1 - HRM__EPS);
+        } else {
+            rb = HRM_HYPOT(db, D);
+            c->w_cos_b = D / rb;
+            c->w_sin_b = db / rb;
+            c->pb = c->w_ub = HRM_ATAN2(db, D);
+            /* A tiny angular range (a short segment far from the light)
+               makes the warp nearly affine and p - pa imprecise: none. */
+            if (!(c->pb - c->pa > HRM_SQRT(HRM__EPS) * (HRM_FABS(c->pa) + HRM_FABS(c->pb)))) {
+                c->warp = HRM_WARP_NONE;
+                c->pa = 0;
+                c->pb = T;
+            }
+        }
+        break;
+    }
+    case HRM_WARP_USER:
+        if (!w->t_of_u || !w->dt_du || !w->u_of_t) return HRM_ERR_BAD_WARP;
+        c->uw = w;
+        c->pa = w->u_of_t(w->user, c->t0);
+        c->pb = w->u_of_t(w->user, c->t1);
+        if (!(HRM__FINITE(c->pa) && HRM__FINITE(c->pb) && c->pb > c->pa)) return HRM_ERR_BAD_WARP;
+        if (inf) c->pb -= (HRM_FABS(c->pa) + HRM_FABS(c->pb)) * HRM__EPS;
+        break;
+    default:
+        return HRM_ERR_BAD_WARP;
+    }
+    if (inf && c->warp == HRM_WARP_NONE) return HRM_ERR_BAD_INTERVAL;
+    c->s_end = c->t1;
+    if (inf) {
+        hrm_real off, J;
+        hrm__map(c, c->pb, &off, &J);
+        c->s_end = c->t0 + off;
+    }
+    return HRM_OK;
 }
 
 static hrm_real hrm__abscissa(const hrm__ctx *c, hrm_real off)
@@ -560,7 +768,7 @@ static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
     c->stats.evals += em | sc;
     for (i = 0; i < HRM__CH; ++i) {
         pt->gq[i] = q[i] * J;
-        pt->gs[i] = st[i] * J;
+        pt->gs[i] = c->need_st ? st[i] * J : 0; /* a closed form has tau already */
     }
 }
 
@@ -570,10 +778,11 @@ static void hrm__closed_tr(hrm__ctx *c, hrm_real Tr[HRM__CH])
 {
     int i;
     if (c->homog) {
-        for (i = 0; i < HRM__CH; ++i) Tr[i] = HRM_EXP(-c->st[i] * c->T);
+        for (i = 0; i < HRM__CH; ++i)
+            Tr[i] = c->st[i] == 0 ? 1 : HRM_EXP(-c->st[i] * c->T); /* no 0 * inf */
         return;
     }
-    c->m->transmittance(c->m->user, c->t0, c->t1, Tr);
+    c->m->transmittance(c->m->user, c->t0, c->s_end, Tr);
     hrm__check(c, Tr, 2);
     c->stats.medium_evals++;
 }
@@ -950,20 +1159,28 @@ static int hrm__stage_cost(const hrm__tableau *tb)
 
 /* The tolerance of one step or interval, per component of y = (tau, L):
    atol * frac + rtol * max(|y1 - y0|, frac * |y1|), frac being the step's
-   share of the parameter range. Summed over the steps this is at most
+   share of the parameter range (p0 to p1). Summed over the steps this is at most
    atol + rtol * (|L| + sum of |increments|) = atol + 2 rtol |L| for a
    nonnegative source, which is what makes rtol a bound on the global error
    (the optical-depth form adds local errors without amplifying them). The
    result is the largest error / tolerance: <= 1 accepts. Muñoz's and
    Gonterman's rules measure the error their own way (Munoz 2014 eq. 11-12:
    relative to |y1|; Gonterman 2010 eq. 3.4: per unit step). */
-static hrm_real hrm__ratio(const hrm__ctx *c, hrm_control control, hrm_real frac,
+static hrm_real hrm__ratio(const hrm__ctx *c, hrm_control control, hrm_real p0, hrm_real p1,
                            const hrm_real *y0, const hrm_real *y1, const hrm_real *err)
 {
-    hrm_real worst = 0;
+    hrm_real worst = 0, frac = HRM_FABS((p1 - p0) / (c->pb - c->pa));
+    /* Nodes are placed to within an ulp of p: no estimate resolves the
+       relative error |p| eps / h this misplacement causes (it bites when a
+       warp packs a boundary layer against an end far from p = 0). */
+    hrm_real pos = HRM_FABS(p0) > HRM_FABS(p1) ? HRM_FABS(p0) : HRM_FABS(p1);
+    hrm_real noise = 8 * HRM__EPS * (pos / HRM_FABS(p1 - p0) + 1);
     int n;
     for (n = 0; n < HRM__NY; ++n) {
         hrm_real atol = n >= HRM__CH ? c->atol : 0, tol, e = HRM_FABS(err[n]);
+        /* An error in tau matters through exp(-tau) only: weigh it by the
+           transmittance at the step's start (no effort where Tr is 0). */
+        if (n < HRM__CH && !c->rte) e *= HRM_EXP(-y0[n]);
         hrm_real inc = HRM_FABS(y1[n] - y0[n]), big = frac * HRM_FABS(y1[n]);
         if (control == HRM_CONTROL_MUNOZ)
             tol = atol + c->rtol * HRM_FABS(y1[n]);
@@ -971,6 +1188,7 @@ static hrm_real hrm__ratio(const hrm__ctx *c, hrm_control control, hrm_real frac
             tol = frac * (atol + c->rtol * HRM_FABS(y1[n]));
         else
             tol = atol * frac + c->rtol * (inc > big ? inc : big);
+        if (tol < noise * inc) tol = noise * inc;
         if (e > 0) {
             hrm_real r = tol > 0 ? e / tol : HRM__R(1e30);
             if (r > worst) worst = r;
@@ -1016,7 +1234,7 @@ static void hrm__ivp_adaptive(hrm__ctx *c, const hrm__tableau *tb, hrm_control c
         have = 1;
         if (hrm__rk_step(c, tb, &start, &end, p, q, y, ynew, err) == 0) have = 0;
         if (c->status != HRM_OK) return;
-        ratio = hrm__ratio(c, control, hs / P, y, ynew, err);
+        ratio = hrm__ratio(c, control, p, q, y, ynew, err);
         accept = ratio <= 1 || forced;
         if (!accept && hs <= c->h_min) {
             accept = 1;
@@ -1105,7 +1323,7 @@ static void hrm__nested_simpson(hrm__ctx *c, int panels, hrm_real acc[HRM__NY])
                 err[HRM__CH + i] = val[HRM__CH + i] - H / 4 * (fa + 2 * fm + fb);
             }
             for (i = 0; i < HRM__NY; ++i) y1[i] = acc[i] + val[i];
-            ratio = hrm__ratio(c, HRM_CONTROL_PI, HRM_FABS(H / span), acc, y1, err);
+            ratio = hrm__ratio(c, HRM_CONTROL_PI, cur.a.p, cur.b.p, acc, y1, err);
             split = ratio > 1;
             if (split && (cur.depth >= HRM__MAX_DEPTH || HRM_FABS(H) / 2 < c->h_min)) {
                 hrm__warn(c, cur.depth >= HRM__MAX_DEPTH ? HRM_WARN_STORAGE : HRM_WARN_H_MIN);
@@ -1265,7 +1483,7 @@ static void hrm__gk_local(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
             hrm__gk15(c, a, b, acc, K, ek, eq);
             if (c->status != HRM_OK) return;
             for (i = 0; i < HRM__NY; ++i) y1[i] = acc[i] + K[i];
-            ratio = hrm__ratio(c, HRM_CONTROL_PI, HRM_FABS((b - a) / span), acc, y1, ek);
+            ratio = hrm__ratio(c, HRM_CONTROL_PI, a, b, acc, y1, ek);
             split = ratio > 1;
             if (split && (d >= HRM__MAX_DEPTH || HRM_FABS(b - a) / 2 < c->h_min)) {
                 hrm__warn(c, d >= HRM__MAX_DEPTH ? HRM_WARN_STORAGE : HRM_WARN_H_MIN);
@@ -1491,7 +1709,8 @@ static hrm_status hrm__run(const hrm_medium *m, hrm_real t0, hrm_real t1,
     hrm__fill(L, HRM__CH, 0);
     hrm__fill(Tr, HRM__CH, 1);
     hrm__fill(tau, HRM__CH, 0);
-    if (!HRM__FINITE(t0) || !HRM__FINITE(t1) || t1 < t0) return HRM_ERR_BAD_INTERVAL;
+    /* t1 = +inf is valid under a warp that maps it to a finite end. */
+    if (!HRM__FINITE(t0) || !(t1 >= t0) || (!HRM__FINITE(t1) && t0 == t1)) return HRM_ERR_BAD_INTERVAL;
     st = hrm__resolve(in, &o);
     if (st != HRM_OK) return st;
 
@@ -1499,8 +1718,6 @@ static hrm_status hrm__run(const hrm_medium *m, hrm_real t0, hrm_real t1,
     c.t0 = t0;
     c.t1 = t1;
     c.T = t1 - t0;
-    c.pa = 0;
-    c.pb = c.T;
     c.rng = o.seed;
     c.homog = (m->flags & HRM_MEDIUM_HOMOGENEOUS) != 0;
     c.per_length = (m->flags & HRM_EMISSION_PER_LENGTH) != 0;
@@ -1515,10 +1732,6 @@ static hrm_status hrm__run(const hrm_medium *m, hrm_real t0, hrm_real t1,
     }
     c.atol = o.atol;
     c.max_evals = o.max_evals;
-    c.h_max = o.h_max > 0 && o.h_max < c.T ? o.h_max : c.T;
-    c.h_min = o.h_min > 0 ? o.h_min
-            : o.control == HRM_CONTROL_MUNOZ ? c.T / 1024 : c.T * HRM__R(1e-9);
-    if (c.h_min > c.h_max) c.h_min = c.h_max;
     if (c.homog) {
         for (i = 0; i < HRM__CH; ++i) {
             c.sa[i] = m->const_sigma_a[i];
@@ -1544,6 +1757,21 @@ static hrm_status hrm__run(const hrm_medium *m, hrm_real t0, hrm_real t1,
                            : 0L))
         return HRM_ERR_BAD_OPTION;
     if (t0 == t1) return HRM_OK;
+    st = hrm__setup_warp(&c, &o.warp);
+    if (st == HRM_OK) st = c.status;
+    if (st != HRM_OK) {
+        *stats = c.stats;
+        return st;
+    }
+    {   /* step bounds, in the parameter */
+        hrm_real P = c.pb - c.pa;
+        c.h_max = o.h_max > 0 && o.h_max < P ? o.h_max : P;
+        hrm_real big = HRM_FABS(c.pa) > HRM_FABS(c.pb) ? HRM_FABS(c.pa) : HRM_FABS(c.pb);
+        big = big > P ? big : P;
+        c.h_min = o.h_min > 0 ? o.h_min
+                : o.control == HRM_CONTROL_MUNOZ ? P / 1024 : 64 * HRM__EPS * big;
+        if (c.h_min > c.h_max) c.h_min = c.h_max;
+    }
     if (!c.use_le && !c.use_li && c.closed) {
         /* Nothing to integrate: only the closed-form Tr. */
         hrm__closed_tr(&c, Tr);
