@@ -1850,6 +1850,32 @@ static hrm_status hrm__run(const hrm_medium *m, hrm_real t0, hrm_real t1,
     return c.warning;
 }
 
+HRM__DEF hrm_status hrm_equiangular_warp(const hrm_real origin[3], const hrm_real dir[3],
+                                         const hrm_real light[3], hrm_warp *warp)
+{
+    hrm_real v[3], x[3], dd, vd;
+    int i;
+    if (!origin || !dir || !light || !warp) return HRM_ERR_NULL_ARGUMENT;
+    for (i = 0; i < 3; ++i) v[i] = light[i] - origin[i];
+    dd = dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2];
+    vd = v[0] * dir[0] + v[1] * dir[1] + v[2] * dir[2];
+    /* |v x dir| is the light's distance from the ray's line times |dir|,
+       without the cancellation of sqrt(|v|^2 - delta^2). */
+    x[0] = v[1] * dir[2] - v[2] * dir[1];
+    x[1] = v[2] * dir[0] - v[0] * dir[2];
+    x[2] = v[0] * dir[1] - v[1] * dir[0];
+    if (!(dd > 0 && HRM__FINITE(dd) && HRM__FINITE(vd))) return HRM_ERR_BAD_WARP;
+    memset(warp, 0, sizeof *warp);
+    warp->kind = HRM_WARP_EQUIANGULAR;
+    warp->delta = vd / dd;
+    warp->D = HRM_SQRT(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) / dd;
+    if (!(HRM__FINITE(warp->delta) && HRM__FINITE(warp->D))) {
+        memset(warp, 0, sizeof *warp);
+        return HRM_ERR_BAD_WARP;
+    }
+    return HRM_OK;
+}
+
 HRM__DEF hrm_status hrm_solve(const hrm_medium *medium, hrm_real t0, hrm_real t1,
                               const hrm_options *options, hrm_result *result)
 {
