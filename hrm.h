@@ -505,6 +505,8 @@ typedef struct hrm__ctx {
                               u(t1); u(t1) itself (pi/2 for t1 = inf) */
     const hrm_warp *uw;    /* user */
     hrm_real s_end;        /* the last abscissa: t1, or s(pb) when t1 = inf */
+    hrm_real scale[2 * HRM__CH]; /* adaptive: coarse |total| of (tau, L) / 2 */
+    int rough_left;        /* adaptive: rough intervals still allowed */
 } hrm__ctx;
 
 static void hrm__fill(hrm_real *v, int n, hrm_real x)
@@ -1166,7 +1168,10 @@ static int hrm__stage_cost(const hrm__tableau *tb)
    result is the largest error / tolerance: <= 1 accepts. Muñoz's and
    Gonterman's rules measure the error their own way (Munoz 2014 eq. 11-12:
    relative to |y1|; Gonterman 2010 eq. 3.4: per unit step). */
-static hrm_real hrm__ratio(const hrm__ctx *c, hrm_control control, hrm_real p0, hrm_real p1,
+#define HRM__JUMP 16 /* a step with an O(h) error may take rtol/16 of the
+                        scale, and at most 16 such steps per solve */
+
+static hrm_real hrm__ratio(const hrm__ctx *c, int control, hrm_real p0, hrm_real p1,
                            const hrm_real *y0, const hrm_real *y1, const hrm_real *err)
 {
     hrm_real worst = 0, frac = HRM_FABS((p1 - p0) / (c->pb - c->pa));
@@ -1178,16 +1183,21 @@ static hrm_real hrm__ratio(const hrm__ctx *c, hrm_control control, hrm_real p0, 
     int n;
     for (n = 0; n < HRM__NY; ++n) {
         hrm_real atol = n >= HRM__CH ? c->atol : 0, tol, e = HRM_FABS(err[n]);
+        hrm_real inc = HRM_FABS(y1[n] - y0[n]), Y = HRM_FABS(y1[n]);
         /* An error in tau matters through exp(-tau) only: weigh it by the
            transmittance at the step's start (no effort where Tr is 0). */
         if (n < HRM__CH && !c->rte) e *= HRM_EXP(-y0[n]);
-        hrm_real inc = HRM_FABS(y1[n] - y0[n]), big = frac * HRM_FABS(y1[n]);
-        if (control == HRM_CONTROL_MUNOZ)
-            tol = atol + c->rtol * HRM_FABS(y1[n]);
-        else if (control == HRM_CONTROL_GONTERMAN)
-            tol = frac * (atol + c->rtol * HRM_FABS(y1[n]));
-        else
-            tol = atol * frac + c->rtol * (inc > big ? inc : big);
+        if (control == HRM_CONTROL_MUNOZ) {
+            tol = atol + c->rtol * Y;
+        } else if (control == HRM_CONTROL_GONTERMAN) {
+            tol = frac * (atol + c->rtol * Y);
+        } else {
+            Y = Y > c->scale[n] ? Y : c->scale[n];
+            if (control == HRM__JUMP)
+                tol = atol + c->rtol * Y / HRM__JUMP;
+            else
+                tol = atol * frac + c->rtol * (inc > frac * Y ? inc : frac * Y);
+        }
         if (tol < noise * inc) tol = noise * inc;
         if (e > 0) {
             hrm_real r = tol > 0 ? e / tol : HRM__R(1e30);
@@ -1195,6 +1205,37 @@ static hrm_real hrm__ratio(const hrm__ctx *c, hrm_control control, hrm_real p0, 
         }
     }
     return worst;
+}
+
+/* A refinement that did not at least halve the error ratio while the step
+   at least halved: the error is O(h) (a jump, such as a shadow edge) or
+   noise, which no per-unit-step share can accept. Such a step is judged
+   against a fixed share of the scale instead, so a jump costs a few
+   refinements, not a descent to h_min. */
+static int hrm__rough(hrm_real ratio, hrm_real parent_ratio)
+{
+    return parent_ratio > 1 && ratio > parent_ratio / 2;
+}
+
+/* A rough interval within its fixed share, while the solve has shares left:
+   at most HRM__JUMP of them, so that together they stay within rtol. */
+static int hrm__rough_ok(hrm__ctx *c, hrm_real ratio, hrm_real parent, hrm_real p0,
+                         hrm_real p1, const hrm_real *y0, const hrm_real *y1, const hrm_real *err)
+{
+    if (c->rough_left <= 0 || !hrm__rough(ratio, parent) ||
+        hrm__ratio(c, HRM__JUMP, p0, p1, y0, y1, err) > 1)
+        return 0;
+    c->rough_left--;
+    return 1;
+}
+
+/* The scale of the solution from a coarse estimate of the whole integral
+   (a pilot that costs no extra evaluation): relative tolerances then
+   mean a share of the total even where the integral starts at zero. */
+static void hrm__set_scale(hrm__ctx *c, const hrm_real *total)
+{
+    int n;
+    for (n = 0; n < HRM__NY; ++n) c->scale[n] = HRM_FABS(total[n]) / 2;
 }
 
 static hrm_real hrm__clamp(hrm_real x, hrm_real lo, hrm_real hi)
@@ -1216,12 +1257,14 @@ static void hrm__ivp_adaptive(hrm__ctx *c, const hrm__tableau *tb, hrm_control c
 {
     hrm_real from = c->rte ? c->pb : c->pa, to = c->rte ? c->pa : c->pb;
     hrm_real P = HRM_FABS(to - from), dir = to > from ? 1 : -1, p = from;
-    hrm_real ynew[HRM__NY], err[HRM__NY], r_prev = 1, h;
+    hrm_real ynew[HRM__NY], err[HRM__NY], r_prev = 1, r_parent = 0, h;
     hrm_real kk = (hrm_real)tb->k;
     hrm__pt start, end;
-    int cost = hrm__stage_cost(tb), have = 0, after_reject = 0;
+    int cost = hrm__stage_cost(tb), have = 0, after_reject = 0, first = 1, n;
 
     hrm__ivp_init(c, y);
+    /* The first attempt, extrapolated to the whole range, is the pilot
+       that sets the scale. */
     h = h0 > 0 ? h0 : P * HRM__R(0.5) * HRM_POW(c->rtol, 1 / (kk + 1));
     h = hrm__clamp(h, c->h_min, c->h_max);
     while (p != to) {
@@ -1234,8 +1277,20 @@ static void hrm__ivp_adaptive(hrm__ctx *c, const hrm__tableau *tb, hrm_control c
         have = 1;
         if (hrm__rk_step(c, tb, &start, &end, p, q, y, ynew, err) == 0) have = 0;
         if (c->status != HRM_OK) return;
+        if (first) {
+            hrm_real tot[HRM__NY];
+            for (n = 0; n < HRM__NY; ++n) tot[n] = (ynew[n] - y[n]) * (P / hs);
+            if (control != HRM_CONTROL_MUNOZ && control != HRM_CONTROL_GONTERMAN)
+                hrm__set_scale(c, tot);
+            first = 0;
+        }
         ratio = hrm__ratio(c, control, p, q, y, ynew, err);
         accept = ratio <= 1 || forced;
+        if (!accept && control == HRM_CONTROL_PI && c->rough_left > 0 &&
+            hrm__rough(ratio, r_parent) && hrm__ratio(c, HRM__JUMP, p, q, y, ynew, err) <= 1) {
+            accept = 2;
+            c->rough_left--;
+        }
         if (!accept && hs <= c->h_min) {
             accept = 1;
             hrm__warn(c, HRM_WARN_H_MIN);
@@ -1245,6 +1300,8 @@ static void hrm__ivp_adaptive(hrm__ctx *c, const hrm__tableau *tb, hrm_control c
             fac = HRM__R(0.99) * c->rtol / (ratio * c->rtol + HRM__R(0.01));
         } else if (control == HRM_CONTROL_GONTERMAN) {
             fac = ratio > 0 ? HRM__R(0.9) * HRM_POW(ratio, -1 / kk) : HRM__R(1e30);
+        } else if (accept == 2) {
+            fac = 1; /* past the jump: let the next step find its size */
         } else if (accept) {
             /* PI control (Gustafsson 1991), exponents 0.7/k and 0.4/k. */
             hrm_real r = ratio > HRM__R(1e-10) ? ratio : HRM__R(1e-10);
@@ -1252,7 +1309,7 @@ static void hrm__ivp_adaptive(hrm__ctx *c, const hrm__tableau *tb, hrm_control c
             fac = hrm__clamp(fac, HRM__R(0.2), after_reject ? 1 : 5);
             r_prev = r > HRM__R(1e-4) ? r : HRM__R(1e-4);
         } else {
-            fac = hrm__clamp(HRM__R(0.9) * HRM_POW(ratio, -1 / kk), HRM__R(0.2), HRM__R(0.9));
+            fac = hrm__clamp(HRM__R(0.9) * HRM_POW(ratio, -1 / kk), HRM__R(0.2), HRM__R(0.5));
         }
         if (accept) {
             memcpy(y, ynew, sizeof ynew);
@@ -1260,10 +1317,12 @@ static void hrm__ivp_adaptive(hrm__ctx *c, const hrm__tableau *tb, hrm_control c
             if (have) start = end;
             c->stats.steps++;
             after_reject = 0;
+            r_parent = accept == 2 ? ratio : 0; /* noise persists; a jump does not */
         } else {
             have = 1; /* the start sample stands */
             c->stats.rejected++;
             after_reject = 1;
+            r_parent = ratio;
         }
         h = hrm__clamp(hs * fac, c->h_min, c->h_max);
     }
@@ -1282,54 +1341,81 @@ static void hrm__ivp_adaptive(hrm__ctx *c, const hrm__tableau *tb, hrm_control c
    its nodes' tau come from its own sigma_t samples as in hrm__simpson. */
 typedef struct hrm__ns_iv {
     hrm__pt a, m, b;
+    hrm_real parent; /* the error ratio of the interval it was split from */
     int depth;
 } hrm__ns_iv;
+
+#define HRM__NS_PANELS 32 /* initial panels at most */
+
+/* Simpson and trapezoid on one interval given tau at its left end:
+   val = the increments of (tau, L), err = Simpson - trapezoid. */
+static void hrm__ns_rule(const hrm__ctx *c, const hrm__pt *a, const hrm__pt *m,
+                         const hrm__pt *b, const hrm_real *tau_a,
+                         hrm_real *val, hrm_real *err)
+{
+    hrm_real H = b->p - a->p;
+    int i;
+    for (i = 0; i < HRM__CH; ++i) {
+        hrm_real ta = tau_a[i], tm, tb, fa, fm, fb;
+        if (c->closed) {
+            ta = a->tau[i];
+            tm = m->tau[i];
+            tb = b->tau[i];
+        } else {
+            tb = ta + H / 6 * (a->gs[i] + 4 * m->gs[i] + b->gs[i]);
+            tm = ta + H / 24 * (5 * a->gs[i] + 8 * m->gs[i] - b->gs[i]);
+            tb = tb < ta ? ta : tb;
+            tm = hrm__clamp(tm, ta, tb);
+        }
+        fa = HRM_EXP(-ta) * a->gq[i];
+        fm = HRM_EXP(-tm) * m->gq[i];
+        fb = HRM_EXP(-tb) * b->gq[i];
+        val[i] = c->closed ? 0 : tb - ta;
+        err[i] = c->closed ? 0 : val[i] - H / 4 * (a->gs[i] + 2 * m->gs[i] + b->gs[i]);
+        val[HRM__CH + i] = H / 6 * (fa + 4 * fm + fb);
+        err[HRM__CH + i] = val[HRM__CH + i] - H / 4 * (fa + 2 * fm + fb);
+    }
+}
 
 static void hrm__nested_simpson(hrm__ctx *c, int panels, hrm_real acc[HRM__NY])
 {
     hrm__ns_iv stack[HRM__MAX_DEPTH + 1], cur;
-    hrm_real span = c->pb - c->pa;
+    hrm__pt ini[2 * HRM__NS_PANELS + 1];
+    hrm_real span = c->pb - c->pa, val[HRM__NY], err[HRM__NY], tot[HRM__NY];
     int top = 0, k, i;
 
-    hrm__fill(acc, HRM__NY, 0);
-    hrm__eval(c, c->pa, &cur.b);
-    for (i = 0; i < HRM__CH; ++i) acc[i] = c->closed ? cur.b.tau[i] : 0;
+    /* The initial panels first: their coarse sum is the scale. */
+    if (panels > HRM__NS_PANELS) panels = HRM__NS_PANELS;
+    for (k = 0; k <= 2 * panels; ++k)
+        hrm__eval(c, k == 2 * panels ? c->pb
+                     : c->pa + span * ((hrm_real)k / (hrm_real)(2 * panels)), &ini[k]);
+    hrm__fill(tot, HRM__NY, 0);
     for (k = 0; k < panels; ++k) {
-        hrm_real pr = k + 1 == panels ? c->pb : c->pa + span * ((hrm_real)(k + 1) / (hrm_real)panels);
-        cur.a = cur.b;
-        hrm__eval(c, pr, &cur.b);
-        hrm__eval(c, (cur.a.p + pr) / 2, &cur.m);
+        hrm__ns_rule(c, &ini[2 * k], &ini[2 * k + 1], &ini[2 * k + 2], tot, val, err);
+        for (i = 0; i < HRM__NY; ++i) tot[i] += val[i];
+    }
+    hrm__set_scale(c, tot);
+    if (c->status != HRM_OK) return;
+
+    hrm__fill(acc, HRM__NY, 0);
+    for (k = 0; k < panels; ++k) {
+        cur.a = ini[2 * k];
+        cur.m = ini[2 * k + 1];
+        cur.b = ini[2 * k + 2];
         cur.depth = 0;
+        cur.parent = 0;
         for (;;) {
-            hrm_real H = cur.b.p - cur.a.p, val[HRM__NY], err[HRM__NY], y1[HRM__NY], ratio;
+            hrm_real H = cur.b.p - cur.a.p, y1[HRM__NY], ratio;
             int split;
-            for (i = 0; i < HRM__CH; ++i) {
-                hrm_real ta = acc[i], tm, tb, fa, fm, fb;
-                if (c->closed) {
-                    tm = cur.m.tau[i];
-                    tb = cur.b.tau[i];
-                } else {
-                    tb = ta + H / 6 * (cur.a.gs[i] + 4 * cur.m.gs[i] + cur.b.gs[i]);
-                    tm = ta + H / 24 * (5 * cur.a.gs[i] + 8 * cur.m.gs[i] - cur.b.gs[i]);
-                    tb = tb < ta ? ta : tb;
-                    tm = hrm__clamp(tm, ta, tb);
-                }
-                fa = HRM_EXP(-ta) * cur.a.gq[i];
-                fm = HRM_EXP(-tm) * cur.m.gq[i];
-                fb = HRM_EXP(-tb) * cur.b.gq[i];
-                val[i] = tb - ta;
-                err[i] = c->closed ? 0 : val[i] - H / 4 * (cur.a.gs[i] + 2 * cur.m.gs[i] + cur.b.gs[i]);
-                val[HRM__CH + i] = H / 6 * (fa + 4 * fm + fb);
-                err[HRM__CH + i] = val[HRM__CH + i] - H / 4 * (fa + 2 * fm + fb);
-            }
+            hrm__ns_rule(c, &cur.a, &cur.m, &cur.b, acc, val, err);
             for (i = 0; i < HRM__NY; ++i) y1[i] = acc[i] + val[i];
             ratio = hrm__ratio(c, HRM_CONTROL_PI, cur.a.p, cur.b.p, acc, y1, err);
-            split = ratio > 1;
+            split = ratio > 1 && !hrm__rough_ok(c, ratio, cur.parent, cur.a.p, cur.b.p, acc, y1, err);
             if (split && (cur.depth >= HRM__MAX_DEPTH || HRM_FABS(H) / 2 < c->h_min)) {
                 hrm__warn(c, cur.depth >= HRM__MAX_DEPTH ? HRM_WARN_STORAGE : HRM_WARN_H_MIN);
                 split = 0;
             }
-            if (split && c->stats.evals + 2 + 2 * (long)(panels - 1 - k) > c->max_evals) {
+            if (split && c->stats.evals + 2 > c->max_evals) {
                 hrm__warn(c, HRM_WARN_MAX_EVALS);
                 split = 0;
             }
@@ -1343,16 +1429,20 @@ static void hrm__nested_simpson(hrm__ctx *c, int panels, hrm_real acc[HRM__NY])
                 right.a = cur.m;
                 right.b = cur.b;
                 right.depth = cur.depth + 1;
+                right.parent = ratio;
                 hrm__eval(c, (cur.m.p + cur.b.p) / 2, &right.m);
                 cur.b = cur.m;
                 hrm__eval(c, (cur.a.p + cur.b.p) / 2, &cur.m);
                 cur.depth++;
+                cur.parent = ratio;
                 stack[top++] = right;
                 c->stats.rejected++;
             }
             if (c->status != HRM_OK) return;
         }
     }
+    if (c->closed)
+        for (i = 0; i < HRM__CH; ++i) acc[i] = cur.b.tau[i];
 }
 
 /* Gauss-Kronrod G7/K15 on [-1, 1]: the positive K15 nodes, their weights,
@@ -1461,30 +1551,59 @@ static void hrm__gk15(hrm__ctx *c, hrm_real a, hrm_real b, const hrm_real *tau_a
 
 /* Gauss-Kronrod, Munoz's local mode: an interval whose |K - G| exceeds its
    share of the tolerance is split in two and its 15 samples are discarded.
-   Intervals finish left to right, so tau at each left end is final. */
+   The initial intervals are integrated first, relative to tau at their own
+   left ends (their sum is the scale); then intervals finish left to right,
+   so tau at each left end is final. */
+#define HRM__GK_INITIAL 32 /* initial intervals at most */
+
 static void hrm__gk_local(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
 {
-    hrm_real stack_a[HRM__MAX_DEPTH + 2], stack_b[HRM__MAX_DEPTH + 2];
+    hrm_real stack_a[HRM__MAX_DEPTH + 2], stack_b[HRM__MAX_DEPTH + 2], stack_r[HRM__MAX_DEPTH + 2];
     int stack_d[HRM__MAX_DEPTH + 2];
-    hrm_real span = c->pb - c->pa;
-    int top, k, i;
+    hrm_real K0[HRM__GK_INITIAL][HRM__NY], E0[HRM__GK_INITIAL][HRM__NY];
+    hrm_real span = c->pb - c->pa, zero[HRM__NY], eq[HRM__NY], tot[HRM__NY];
+    int top, k, i, ch;
+
+    if (n0 > HRM__GK_INITIAL) n0 = HRM__GK_INITIAL;
+    hrm__fill(zero, HRM__NY, 0);
+    hrm__fill(tot, HRM__NY, 0);
+    for (k = 0; k < n0; ++k) {
+        hrm_real a = c->pa + span * ((hrm_real)k / (hrm_real)n0);
+        hrm_real b = k + 1 == n0 ? c->pb : c->pa + span * ((hrm_real)(k + 1) / (hrm_real)n0);
+        hrm__gk15(c, a, b, zero, K0[k], E0[k], eq);
+        for (ch = 0; ch < HRM__CH; ++ch) {
+            hrm_real f = c->closed ? 1 : HRM_EXP(-tot[ch]);
+            tot[ch] += K0[k][ch];
+            tot[HRM__CH + ch] += f * K0[k][HRM__CH + ch];
+        }
+    }
+    hrm__set_scale(c, tot);
 
     hrm__fill(acc, HRM__NY, 0);
     for (k = 0; k < n0; ++k) {
         stack_a[0] = c->pa + span * ((hrm_real)k / (hrm_real)n0);
         stack_b[0] = k + 1 == n0 ? c->pb : c->pa + span * ((hrm_real)(k + 1) / (hrm_real)n0);
         stack_d[0] = 0;
+        stack_r[0] = 0;
         top = 1;
         while (top > 0) {
-            hrm_real a = stack_a[top - 1], b = stack_b[top - 1];
-            hrm_real K[HRM__NY], ek[HRM__NY], eq[HRM__NY], y1[HRM__NY], ratio;
+            hrm_real a = stack_a[top - 1], b = stack_b[top - 1], parent = stack_r[top - 1];
+            hrm_real K[HRM__NY], ek[HRM__NY], y1[HRM__NY], ratio;
             int d = stack_d[--top], split;
-            long reserve = 15 * ((long)top + 2 + (long)(n0 - 1 - k));
-            hrm__gk15(c, a, b, acc, K, ek, eq);
+            long reserve = 15 * ((long)top + 2);
+            if (d == 0) { /* integrated already, relative to its left end */
+                for (i = 0; i < HRM__NY; ++i) {
+                    hrm_real f = i < HRM__CH || c->closed ? 1 : HRM_EXP(-acc[i % HRM__CH]);
+                    K[i] = f * K0[k][i];
+                    ek[i] = f * E0[k][i];
+                }
+            } else {
+                hrm__gk15(c, a, b, acc, K, ek, eq);
+            }
             if (c->status != HRM_OK) return;
             for (i = 0; i < HRM__NY; ++i) y1[i] = acc[i] + K[i];
             ratio = hrm__ratio(c, HRM_CONTROL_PI, a, b, acc, y1, ek);
-            split = ratio > 1;
+            split = ratio > 1 && !hrm__rough_ok(c, ratio, parent, a, b, acc, y1, ek);
             if (split && (d >= HRM__MAX_DEPTH || HRM_FABS(b - a) / 2 < c->h_min)) {
                 hrm__warn(c, d >= HRM__MAX_DEPTH ? HRM_WARN_STORAGE : HRM_WARN_H_MIN);
                 split = 0;
@@ -1496,9 +1615,11 @@ static void hrm__gk_local(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
             if (split) {
                 stack_a[top] = (a + b) / 2;
                 stack_b[top] = b;
+                stack_r[top] = ratio;
                 stack_d[top++] = d + 1;
                 stack_a[top] = a;
                 stack_b[top] = (a + b) / 2;
+                stack_r[top] = ratio;
                 stack_d[top++] = d + 1;
                 c->stats.rejected++;
             } else {
@@ -1732,6 +1853,7 @@ static hrm_status hrm__run(const hrm_medium *m, hrm_real t0, hrm_real t1,
     }
     c.atol = o.atol;
     c.max_evals = o.max_evals;
+    c.rough_left = HRM__JUMP;
     if (c.homog) {
         for (i = 0; i < HRM__CH; ++i) {
             c.sa[i] = m->const_sigma_a[i];
