@@ -15,7 +15,7 @@ all: test
 test:
 	@sh tests/run.sh
 
-$(BUILD)/bench: bench/bench.c hrm.h
+$(BUILD)/bench: bench/bench.c bench/reference.h bench/scenes.h hrm.h
 	@mkdir -p $(BUILD)
 	$(CC) -std=c99 -O2 $(WARN) -I. bench/bench.c -o $@ -lm
 

@@ -127,7 +127,10 @@
    HRM_RECTANGLE        2      N                   midpoint of each segment;
                         (1)                        with jitter, one random
                                                    offset per ray: order 1,
-                                                   unbiased over seeds
+                                                   unbiased over seeds when
+                                                   Tr has a closed form (tau
+                                                   from the samples adds an
+                                                   O(N^-2) bias)
    HRM_SIMPSON          4      2N + 1              N panels
    HRM_MONTE_CARLO      N^-1/2 N                   stratified: one sample per
                         (N^-3/2 stratified, smooth) segment
