@@ -139,8 +139,28 @@
                                                    shared by two stages)
    HRM_ADAMS_BASHFORTH  4      N + 3 (N >= 4)      4-step, started with 3 RK4
                                                    steps; 1 new per step
+   Adaptive (rtol, atol, h_min, h_max, max_evals; see TOLERANCES):
+   HRM_NESTED_SIMPSON   4      2 per split         Simpson vs trapezoid on the
+                                                   same 3 points (Munoz eq. 7);
+                                                   2*steps+1 to start (4
+                                                   panels by default, <= 32)
+   HRM_GAUSS_KRONROD    22     15 per interval     G7/K15; gk_mode GLOBAL
+                                                   (QUADPACK QAG: worst
+                                                   interval first, <= 128
+                                                   intervals) or LOCAL (Munoz:
+                                                   recursive split, samples of
+                                                   a split interval discarded)
+   HRM_BOGACKI_SHAMPINE 3(2)   3 per step          first same as last
+   HRM_DORMAND_PRINCE   5(4)   5 per step          first same as last
+   HRM_FEHLBERG         4(5)   5 per step          4th order propagated
+   HRM_CASH_KARP        4(5)   5 per step          4th order propagated
+   HRM_VERNER           6(5)   6 per step          DVERK's pair
+   Runge-Kutta pairs: "per step" counts attempted steps, accepted or
+   rejected, plus 1 for the first sample. Stages that share a node share one
+   evaluation, and the sample at a step's end starts the next step.
    Orders are for smooth integrands; a discontinuity (a sharp shadow) drags
-   every fixed-step method down to first order.
+   every fixed-step method down to first order; the adaptive methods place
+   small steps around it.
    In a heterogeneous medium without a closed-form transmittance, the rule
    computes tau at its own nodes from the same sigma_t samples at its own
    order (no extra medium evaluations).
@@ -158,6 +178,74 @@
        the stiffness the papers report can be reproduced and measured.
    Neither form is accurate when one step spans many mean free paths; the
    optical-depth form only stays bounded there.
+
+   ==========================================================================
+   TOLERANCES (adaptive methods)
+   ==========================================================================
+   rtol (default 1e-4) and atol (default 0) bound the GLOBAL error of L, per
+   channel:  |L - L_exact| <~ rtol*|L| + atol.  Error control is local, so
+   this is how the local tests are built to add up:
+   - each step or interval gets the share  atol*f + rtol*max(|dL|, f*|L|)
+     of the tolerance, f being its fraction of the integration range and dL
+     its own increment; summed over the steps that is <= atol + 2*rtol*|L|.
+     |L| is the larger of the running sum and half of a coarse estimate of
+     the total taken from the first samples (no extra evaluation), so an
+     integral that starts at zero is not asked for a relative accuracy on
+     nothing;
+   - in the optical-depth form the local errors add without amplification,
+     which is what makes a sum of local shares a global bound;
+   - tau is controlled the same way, its error weighted by the transmittance
+     where it occurs (an error in tau matters through exp(-tau) only): the
+     bound is |Tr - Tr_exact| <~ 2*rtol*tau(t0,t1), absolute, and no effort
+     goes into tau where Tr is already 0. A closed-form Tr is exact;
+   - a step or interval whose error does not shrink with it (a jump such as
+     a shadow edge, or noise) may take rtol/16 of |L|, at most 16 times per
+     call, instead of descending to h_min.
+   The estimates are those of the lower-order rule (Simpson vs trapezoid,
+   G7 vs K15, the embedded solution), while the higher-order result is
+   returned, so the achieved error is usually below rtol, far below for
+   nested Simpson and Gauss-Kronrod at tight tolerances (bench/ measures
+   achieved error against rtol for every method and scene). Munoz's and
+   Gonterman's controllers (options.control) keep their papers' own
+   definitions: eq. 12 relative to |L| per step (whose step rule shrinks the
+   step whenever rtol < 0.01: give h_min), and eq. 3.4 error per unit step.
+   rtol below 100 machine epsilons is raised to it (HRM_WARN_RTOL_CLIPPED).
+   When the tolerance cannot be met the call returns a warning and its best
+   estimate: HRM_WARN_H_MIN (a step at h_min still failed: taken anyway),
+   HRM_WARN_MAX_EVALS (the budget left room for one last step to the end,
+   taken unchecked; stats.evals never exceeds max_evals), HRM_WARN_STORAGE
+   (recursion depth 60, or 128 Gauss-Kronrod intervals), HRM_WARN_ROUNDOFF
+   (global Gauss-Kronrod: bisection no longer reduces the error).
+   Stack use: at most about 30 KB (nested Simpson's recursion); no heap.
+
+   ==========================================================================
+   IMPORTANCE SAMPLING (options.warp; Munoz 2014 s.5)
+   ==========================================================================
+   A warp t = t(u) is a change of variable: every method integrates over u,
+   so fixed-step methods and Monte Carlo place their samples uniformly in u
+   (Monte Carlo's pdf is then du/dt) and adaptive methods start from it.
+   h_min, h_max and h0 are in units of u under a warp.
+   HRM_WARP_DISTANCE     u = 1 - exp(-sigma_ref (t - t0)) (Munoz eq. 13,
+                         reflected so that u grows with t). sigma_ref = 0:
+                         the mean sigma_t over channels at t0 (one medium
+                         evaluation); zero or denormal: no warp. Exact for any
+                         N in a grey homogeneous medium under constant Li.
+   HRM_WARP_EQUIANGULAR  u = atan((t - delta)/D) for a point light D from the
+                         ray, projecting at delta (Munoz eq. 16, Kulla and
+                         Fajardo 2012); hrm_equiangular_warp computes delta
+                         and D. D = 0 with delta in [t0, t1]: the integral
+                         diverges, HRM_ERR_SINGULAR; D = 0 outside it, or an
+                         angular range below sqrt(epsilon) of the angles (a
+                         short segment far from the light): no warp.
+   HRM_WARP_USER         the host's t_of_u, dt_du (>= 0) and u_of_t.
+   Infinite rays: t1 = +INFINITY is valid under a warp that maps it to a
+   finite u (distance with sigma_ref > 0, equiangular with D > 0, a user
+   warp whose u_of_t(inf) is finite), else HRM_ERR_BAD_INTERVAL. The far end
+   is pulled in by one rounding step of u, so no callback ever sees infinity
+   (the part dropped has measure of order epsilon in u); a closed-form
+   transmittance callback is asked for Tr(t0, t) at that last abscissa.
+   In the RTE form, warps make the equation stiff (Munoz s.6); the
+   optical-depth form is not affected.
 
    ==========================================================================
    WHAT hrm DOES NOT DO
@@ -204,7 +292,7 @@ typedef HRM_REAL hrm_real;
     X(HRM_WARN_RTOL_CLIPPED, 4, "rtol below 100 machine epsilons was raised to that floor") \
     X(HRM_WARN_ROUNDOFF, 5, "round-off prevents the requested tolerance; best estimate returned") \
     X(HRM_ERR_NULL_ARGUMENT, -1, "a required pointer argument is NULL")      \
-    X(HRM_ERR_BAD_INTERVAL, -2, "t0 or t1 is not finite, or t1 < t0")       \
+    X(HRM_ERR_BAD_INTERVAL, -2, "t0 not finite, t1 NaN or below t0, or t1 infinite without a warp that maps it to a finite end")       \
     X(HRM_ERR_BAD_STEPS, -3, "options.steps is negative")                    \
     X(HRM_ERR_BAD_METHOD, -4, "unknown method")                              \
     X(HRM_ERR_BAD_OPTION, -5, "an option is out of range (form, tolerances, step bounds, budget)") \
