@@ -171,8 +171,9 @@
        L >= 0 and 0 <= Tr <= 1 however thick the medium (in Adams-Bashforth a
        positivity limiter keeps each increment's sign when every history
        value agrees on it; it is inactive on resolved problems).
-   HRM_FORM_RTE  dL/dt = S - sigma_t*L (Munoz 2014 eq. 1) with Tr alongside,
-       marched from t1 to t0 in the direction light travels. Explicit
+   HRM_FORM_RTE  dL/dt = S - sigma_t*L (Munoz 2014 eq. 1) with Tr alongside
+       (reported unless the medium has a closed form, which is reported
+       instead), marched from t1 to t0 in the direction light travels. Explicit
        methods blow up once h*sigma_t passes their stability limit (2 for
        Euler, about 2.79 for RK4, 0.3 for Adams-Bashforth 4): kept so that
        the stiffness the papers report can be reproduced and measured.
@@ -2047,10 +2048,10 @@ static hrm_status hrm__run(const hrm_medium *m, hrm_real t0, hrm_real t1,
             tau[i] = y[i];
         }
     }
-    if (c.rte) {
+    if (c.homog || m->transmittance) {
+        hrm__closed_tr(&c, Tr); /* exact in every method and form */
+    } else if (c.rte) {
         for (i = 0; i < HRM__CH; ++i) Tr[i] = tau[i]; /* y holds (Tr, L) */
-    } else if (c.closed) {
-        hrm__closed_tr(&c, Tr);
     } else {
         for (i = 0; i < HRM__CH; ++i) Tr[i] = HRM_EXP(-tau[i]);
     }
