@@ -942,6 +942,7 @@ static void hrm__nodes(hrm__ctx *c, int N, int kind, hrm_real xi,
             L[i] += w * HRM_EXP(-tau[i]) * pt.gq[i];
         }
         prev_p = p;
+        c->stats.steps++;
         if (c->status != HRM_OK) return;
     }
     if (!c->closed)
@@ -990,6 +991,7 @@ static void hrm__simpson(hrm__ctx *c, int N, hrm_real L[HRM__CH], hrm_real tau[H
             tau[i] = tb;
         }
         a = b;
+        c->stats.steps++;
         if (c->status != HRM_OK) return;
     }
 }
@@ -2000,15 +2002,12 @@ static hrm_status hrm__run(const hrm_medium *m, hrm_real t0, hrm_real t1,
     switch (o.method) {
     case HRM_RECTANGLE:
         hrm__nodes(&c, o.steps, 0, o.jitter ? hrm__uniform(&c.rng) : HRM__R(0.5), L, tau);
-        c.stats.steps = o.steps;
         break;
     case HRM_MONTE_CARLO:
         hrm__nodes(&c, o.steps, o.stratified ? 1 : 2, 0, L, tau);
-        c.stats.steps = o.steps;
         break;
     case HRM_SIMPSON:
         hrm__simpson(&c, o.steps, L, tau);
-        c.stats.steps = o.steps;
         break;
     case HRM_EULER:
     case HRM_RK4:
