@@ -213,8 +213,10 @@
    rtol below 100 machine epsilons is raised to it (HRM_WARN_RTOL_CLIPPED).
    When the tolerance cannot be met the call returns a warning and its best
    estimate: HRM_WARN_H_MIN (a step at h_min still failed: taken anyway),
-   HRM_WARN_MAX_EVALS (the budget left room for one last step to the end,
-   taken unchecked; stats.evals never exceeds max_evals), HRM_WARN_STORAGE
+   HRM_WARN_MAX_EVALS (Runge-Kutta: the last evaluations of the budget are
+   spread evenly over what is left of the ray, unchecked; quadrature: the
+   pending intervals are taken as they are; stats.evals never exceeds
+   max_evals), HRM_WARN_STORAGE
    (recursion depth 60, or 128 Gauss-Kronrod intervals), HRM_WARN_ROUNDOFF
    (global Gauss-Kronrod: bisection no longer reduces the error).
    Stack use: at most about 30 KB (nested Simpson's recursion); no heap.
@@ -1342,9 +1344,9 @@ static void hrm__warn(hrm__ctx *c, hrm_status w)
     if (c->warning == HRM_OK || c->warning == HRM_WARN_RTOL_CLIPPED) c->warning = w;
 }
 
-/* Adaptive Runge-Kutta driver. The last step lands exactly on the end; when
-   the budget has room for one more step only, that step goes to the end
-   unchecked (HRM_WARN_MAX_EVALS); a step refused at h_min is taken anyway
+/* Adaptive Runge-Kutta driver. The last step lands exactly on the end; a
+   budget about to run out finishes the ray in even unchecked steps
+   (HRM_WARN_MAX_EVALS); a step refused at h_min is taken anyway
    (HRM_WARN_H_MIN). */
 static void hrm__ivp_adaptive(hrm__ctx *c, const hrm__tableau *tb, hrm_control control,
                               hrm_real h0, hrm_real y[HRM__NY])
@@ -1363,9 +1365,15 @@ static void hrm__ivp_adaptive(hrm__ctx *c, const hrm__tableau *tb, hrm_control c
     h = hrm__clamp(h, c->h_min, c->h_max);
     while (p != to) {
         hrm_real rem = HRM_FABS(to - p), hs, q, ratio, fac;
-        int forced = c->stats.evals + 2 * (cost + 1) > c->max_evals, accept;
+        /* Steps the budget still pays for (counting a fresh start sample):
+           when the last 64 of them cannot cover the rest at the current
+           size, the rest is spread evenly over them, unchecked. */
+        long left = (c->max_evals - c->stats.evals) / (cost + 1);
+        int forced = left <= 1 || (left <= 64 && rem > h * (hrm_real)left), accept;
         if (forced) hrm__warn(c, HRM_WARN_MAX_EVALS);
-        hs = forced || h * HRM__R(1.1) >= rem ? rem : h; /* no sliver at the end */
+        hs = forced ? (left > 1 ? rem / (hrm_real)left : rem)
+                    : h * HRM__R(1.1) >= rem ? rem : h; /* no sliver at the end */
+        if (hs * HRM__R(1.1) >= rem) hs = rem;
         q = hs == rem ? to : p + dir * hs;
         if (!have) hrm__eval(c, p, &start);
         have = 1;
