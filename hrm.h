@@ -237,7 +237,9 @@
                          ray, projecting at delta (Munoz eq. 16, Kulla and
                          Fajardo 2012); hrm_equiangular_warp computes delta
                          and D. D = 0 with delta in [t0, t1]: the integral
-                         diverges, HRM_ERR_SINGULAR; D = 0 outside it, or an
+                         diverges, HRM_ERR_SINGULAR (also when D is below
+                         4 epsilons of |delta|, where no abscissa t can
+                         resolve the light's distance); D = 0 outside it, or an
                          angular range below sqrt(epsilon) of the angles (a
                          short segment far from the light): no warp.
    HRM_WARP_USER         the host's t_of_u, dt_du (>= 0) and u_of_t.
@@ -733,8 +735,12 @@ static hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_warp *w)
     case HRM_WARP_EQUIANGULAR: {
         hrm_real D = w->D, da = c->t0 - w->delta, db = c->t1 - w->delta, rb;
         if (!(HRM__FINITE(D) && D >= 0 && HRM__FINITE(w->delta))) return HRM_ERR_BAD_WARP;
+        /* A light closer to the ray than the resolution of t near it is on
+           the ray as far as any abscissa can tell. */
+        hrm_real res = 4 * HRM__EPS * (HRM_FABS(w->delta) > HRM_FABS(c->t0) ? HRM_FABS(w->delta)
+                                                                             : HRM_FABS(c->t0));
+        if (D <= res && w->delta >= c->t0 && w->delta <= c->t1) return HRM_ERR_SINGULAR;
         if (D == 0) {
-            if (w->delta >= c->t0 && w->delta <= c->t1) return HRM_ERR_SINGULAR;
             c->warp = HRM_WARP_NONE; /* light on the ray's line, outside: 1/r^2 is smooth */
             break;
         }

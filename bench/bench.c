@@ -1,102 +1,177 @@
-/* bench/bench.c - single-ray convergence and speed benchmark of hrm.h.
+/* bench/bench.c - single-ray accuracy and speed benchmark of hrm.h.
 
-   For every scene (scenes.h), method and step count N it solves one ray with
+   For every scene (scenes.h), method and warp it solves one ray with
    hrm_solve and compares L with an independent reference (reference.h):
    the error is Munoz 2014's |L - Lref| / max(|L|, |Lref|), worst channel.
-   Run with --help for the options. Exit status: 0 ok, 1 a solve returned an
-   error status, 2 usage error.
+   Fixed-step methods are swept over the step count N, adaptive methods over
+   the relative tolerance rtol; each runs with no warp and with the scene's
+   natural warp (importance sampling as a change of variable). Every row is
+   also timed (median over repeated solves).
 
-   The program is three tables and a loop: scenes (scenes.h), methods (built
-   from hrm_method_name, so a new method appears by itself), warps (only
-   "none" so far), and bench_run_scene() walking them. */
+   Output: tables on stdout (or CSV rows with --csv), a progress line on
+   stderr, and files in the output directory (bench/out by default):
+   bench.csv, one SVG per scene, fig4.svg (Munoz 2014 Fig. 4's scenes and
+   columns) and summary.md. bench/README.md says how to read them.
+   Run with --help for the options and the exit status.
 
-#define _POSIX_C_SOURCE 199309L /* clock_gettime */
+   The program is four tables and a loop: scenes (scenes.h), methods
+   (built from hrm_method_name, so a new method appears by itself), warps,
+   and the parameters (N or rtol), walked by bench_run_scene(); the
+   summaries are computed from the rows afterwards. */
+
+#define _POSIX_C_SOURCE 200809L /* clock_gettime, mkdir, isatty */
 #define HRM_IMPLEMENTATION
 #include "hrm.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "reference.h"
 #include "scenes.h"
+#include "svg.h"
 
-#define BENCH_SEEDS 32          /* Monte Carlo: RMS error over seeds 1..32 */
-#define BENCH_BATCH_SECONDS 1e-3 /* a timed batch lasts at least this long */
-#define BENCH_TIMINGS 5         /* timed batches; the median is reported */
-#define BENCH_FIT_FLOOR 1e-13   /* errors below this are round-off: not fitted */
+#define BENCH_SEEDS 32            /* Monte Carlo: RMS error over seeds 1..32 */
+#define BENCH_SEEDS_QUICK 8
+#define BENCH_MAX_EVALS 100000L   /* adaptive runs: budget, so none runs away */
+#define BENCH_FIT_FLOOR 1e-13     /* errors below this are round-off: not fitted */
+#define BENCH_PLOT_FLOOR 1e-16    /* errors below this are drawn at it */
+#define BENCH_REF_CHECK 1e-13L    /* a reference must be at least this accurate */
 #define BENCH_MAX_PARAMS 16
+#define BENCH_MAX_METHODS (HRM_METHOD_COUNT + 1)
 
-static const int bench_steps_full[] = {1, 2, 4, 8, 16, 32, 64, 128, 256, 512, 1024};
-static const int bench_steps_quick[] = {1, 2, 4, 8, 16, 32, 64};
+enum { /* exit status */
+    BENCH_EXIT_OK = 0,
+    BENCH_EXIT_SOLVE_ERROR = 1,
+    BENCH_EXIT_USAGE = 2,
+    BENCH_EXIT_OUTPUT = 3,
+    BENCH_EXIT_CHECK = 4
+};
+
+static const double bench_steps_full[] = {1, 2, 4, 8, 16, 32, 64, 128, 256, 512, 1024};
+static const double bench_steps_quick[] = {1, 2, 4, 8, 16, 32, 64};
+static const double bench_tols_full[] = {1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10};
+static const double bench_tols_quick[] = {1e-2, 1e-3, 1e-4, 1e-5, 1e-6};
+static const double bench_targets[] = {1e-2, 1e-4, 1e-6}; /* the summary's error targets */
+#define BENCH_TARGETS 3
+
+#define COUNT_OF(a) ((int)(sizeof(a) / sizeof((a)[0])))
 
 /* ------------------------------------------------------------------------ */
-/* Methods                                                                  */
+/* Methods: every hrm method, Gauss-Kronrod in both modes                   */
 /* ------------------------------------------------------------------------ */
 
 typedef enum bench_kind {
-    BENCH_FIXED,  /* deterministic, swept over N */
-    BENCH_RANDOM, /* swept over N, error as RMS over seeds */
-    BENCH_OTHER   /* no sweep written for it yet: listed, not run */
+    BENCH_FIXED,    /* deterministic, swept over N */
+    BENCH_RANDOM,   /* swept over N, error as RMS over seeds */
+    BENCH_ADAPTIVE, /* swept over rtol */
+    BENCH_OTHER     /* no sweep written for it yet: listed, not run */
 } bench_kind;
 
 typedef struct bench_method {
     hrm_method id;
-    const char *name;
+    hrm_gk_mode gk_mode;
+    char name[40];
     bench_kind kind;
-    double order; /* nominal order for smooth integrands (hrm.h manual); 0: unknown */
+    double order; /* nominal order for smooth integrands (hrm.h manual); 0: none */
+    const char *color;
+    int marker;
 } bench_method;
 
-static bench_method bench_methods[HRM_METHOD_COUNT];
+static bench_method bench_methods[BENCH_MAX_METHODS];
 static int bench_method_count;
+
+static const char *const bench_colors[] = {
+    "#1f77b4", "#ff7f0e", "#7f7f7f", "#8c564b", "#d62728", "#9467bd", "#2ca02c",
+    "#17becf", "#bcbd22", "#e377c2", "#000000", "#8c6d31", "#393b79", "#ad494a", "#637939"};
+
+static void bench_method_add(hrm_method id, hrm_gk_mode mode, const char *suffix)
+{
+    bench_method *b = &bench_methods[bench_method_count];
+    b->id = id;
+    b->gk_mode = mode;
+    snprintf(b->name, sizeof b->name, "%s%s", hrm_method_name(id), suffix);
+    b->kind = BENCH_ADAPTIVE;
+    b->order = 0;
+    switch (id) {
+    case HRM_RECTANGLE: b->kind = BENCH_FIXED; b->order = 2; break;
+    case HRM_SIMPSON: b->kind = BENCH_FIXED; b->order = 4; break;
+    case HRM_MONTE_CARLO: b->kind = BENCH_RANDOM; b->order = 0.5; break;
+    case HRM_EULER: b->kind = BENCH_FIXED; b->order = 1; break;
+    case HRM_RK4: b->kind = BENCH_FIXED; b->order = 4; break;
+    case HRM_ADAMS_BASHFORTH: b->kind = BENCH_FIXED; b->order = 4; break;
+    case HRM_NESTED_SIMPSON: case HRM_GAUSS_KRONROD: case HRM_BOGACKI_SHAMPINE:
+    case HRM_DORMAND_PRINCE: case HRM_FEHLBERG: case HRM_CASH_KARP: case HRM_VERNER:
+        break;
+    default: b->kind = BENCH_OTHER; break;
+    }
+    b->color = bench_colors[bench_method_count % COUNT_OF(bench_colors)];
+    b->marker = bench_method_count % 5;
+    bench_method_count++;
+}
 
 static void bench_methods_init(void)
 {
     int m;
     for (m = 1; m < (int)HRM_METHOD_COUNT; ++m) {
-        bench_method *b = &bench_methods[bench_method_count++];
-        b->id = (hrm_method)m;
-        b->name = hrm_method_name(b->id);
-        b->kind = BENCH_FIXED;
-        b->order = 0;
-        switch (b->id) {
-        case HRM_RECTANGLE: b->order = 2; break;
-        case HRM_SIMPSON: b->order = 4; break;
-        case HRM_MONTE_CARLO: b->kind = BENCH_RANDOM; b->order = 0.5; break;
-        case HRM_EULER: b->order = 1; break;
-        case HRM_RK4: b->order = 4; break;
-        case HRM_ADAMS_BASHFORTH: b->order = 4; break;
-        default: b->kind = BENCH_OTHER; break;
+        if (m == (int)HRM_GAUSS_KRONROD) {
+            bench_method_add(HRM_GAUSS_KRONROD, HRM_GK_GLOBAL, "-global");
+            bench_method_add(HRM_GAUSS_KRONROD, HRM_GK_LOCAL, "-local");
+        } else {
+            bench_method_add((hrm_method)m, HRM_GK_DEFAULT, "");
         }
     }
 }
 
+static int bench_is_swept_over_n(const bench_method *me)
+{
+    return me->kind == BENCH_FIXED || me->kind == BENCH_RANDOM;
+}
+
 static const char *bench_kind_name(bench_kind k)
 {
-    return k == BENCH_FIXED    ? "fixed-step"
-           : k == BENCH_RANDOM ? "fixed-step, random (error: RMS over seeds)"
-                               : "no sweep in the bench yet: listed, not run";
+    return k == BENCH_FIXED      ? "fixed-step, swept over N"
+           : k == BENCH_RANDOM   ? "fixed-step, random (error: RMS over seeds), swept over N"
+           : k == BENCH_ADAPTIVE ? "adaptive, swept over rtol"
+                                 : "no sweep in the bench yet: listed, not run";
 }
 
 /* ------------------------------------------------------------------------ */
-/* Warps (importance sampling as a change of variable): a column to come    */
+/* Warps                                                                    */
 /* ------------------------------------------------------------------------ */
 
-typedef struct bench_warp {
-    const char *name;
-    void (*apply)(const bench_scene *scene, hrm_options *options);
-} bench_warp;
+static const char *const bench_warp_names[BENCH_WARP_COUNT] = {"none", "distance", "equiangular"};
 
-static void bench_warp_none(const bench_scene *scene, hrm_options *options)
+/* Sets options->warp; returns 0 if the warp does not apply to the scene
+   (equiangular without a point light). The equiangular warp comes from
+   hrm_equiangular_warp for the ray x(s) = (s, 0, 0). */
+static int bench_warp_apply(const bench_scene *sc, bench_warp_id w, hrm_options *o)
 {
-    (void)scene;
-    (void)options;
+    static const hrm_real origin[3] = {0, 0, 0}, dir[3] = {1, 0, 0};
+    double pos[3];
+    hrm_real light[3];
+    int i;
+    memset(&o->warp, 0, sizeof o->warp);
+    switch (w) {
+    case BENCH_WARP_NONE:
+        return 1;
+    case BENCH_WARP_DISTANCE:
+        o->warp.kind = HRM_WARP_DISTANCE;
+        o->warp.sigma_ref = 0; /* mean sigma_t at t0 (Munoz 2014 s.5) */
+        return 1;
+    case BENCH_WARP_EQUIANGULAR:
+        if (!sc->light || !sc->light(sc->params, pos)) return 0;
+        for (i = 0; i < 3; ++i) light[i] = (hrm_real)pos[i];
+        return hrm_equiangular_warp(origin, dir, light, &o->warp) == HRM_OK;
+    default:
+        return 0;
+    }
 }
-
-static const bench_warp bench_warps[] = {{"none", bench_warp_none}};
-#define BENCH_WARP_COUNT ((int)(sizeof bench_warps / sizeof bench_warps[0]))
 
 /* ------------------------------------------------------------------------ */
 /* References                                                               */
@@ -107,6 +182,7 @@ typedef struct bench_reference {
     long double accuracy; /* estimated relative accuracy, worst channel */
     long double splits[REF_MAX_POINTS];
     int nsplits;          /* interior split points used */
+    long double panel;
 } bench_reference;
 
 static void bench_reference_compute(const bench_scene *sc, const ref_rule *rule,
@@ -116,6 +192,7 @@ static void bench_reference_compute(const bench_scene *sc, const ref_rule *rule,
         fine[HRM_CHANNELS];
     int n = 0, k = 0, i, j;
 
+    ref->panel = sc->ref_panel > 0 ? sc->ref_panel : REF_PANEL;
     if (sc->split_points) k = sc->split_points(sc->params, cut, REF_MAX_POINTS - 2);
     pts[n++] = LD(sc->t0);
     ref->nsplits = 0;
@@ -128,8 +205,8 @@ static void bench_reference_compute(const bench_scene *sc, const ref_rule *rule,
     for (i = 1; i < n; ++i) ref->splits[ref->nsplits++] = pts[i];
     pts[n++] = LD(sc->t1);
 
-    ref_integrate(rule, sc->integrand, sc->params, pts, n, REF_PANEL, coarse);
-    ref_integrate(rule, sc->integrand, sc->params, pts, n, REF_PANEL / 2, fine);
+    ref_integrate(rule, sc->integrand, sc->params, pts, n, ref->panel, coarse);
+    ref_integrate(rule, sc->integrand, sc->params, pts, n, ref->panel / 2, fine);
     if (sc->closed_form) {
         sc->closed_form(sc->params, LD(sc->t0), LD(sc->t1), ref->L);
         ref->accuracy = ref_rel_diff(fine, ref->L); /* checks the quadrature */
@@ -144,8 +221,9 @@ static void bench_reference_print(FILE *out, const bench_scene *sc, const bench_
     int i;
     fprintf(out, "  reference L = (%.19Lg, %.19Lg, %.19Lg)\n", ref->L[0], ref->L[1], ref->L[2]);
     if (sc->closed_form) {
-        fprintf(out, "    closed form in long double; the independent quadrature agrees to %.1Le\n",
-                ref->accuracy);
+        fprintf(out, "    closed form in long double; an independent %d-point Gauss-Legendre "
+                     "quadrature agrees to %.1Le\n",
+                REF_GL_POINTS, ref->accuracy);
         return;
     }
     fprintf(out, "    %d-point Gauss-Legendre panels in long double", REF_GL_POINTS);
@@ -155,7 +233,7 @@ static void bench_reference_print(FILE *out, const bench_scene *sc, const bench_
             fprintf(out, "%s %.19Lg", i ? "," : "", ref->splits[i]);
     }
     fprintf(out, "\n    estimated relative accuracy %.1Le (panels <= %Lg vs <= %Lg)\n",
-            ref->accuracy, REF_PANEL, REF_PANEL / 2);
+            ref->accuracy, ref->panel, ref->panel / 2);
 }
 
 /* Munoz 2014's relative error |L - Lref| / max(|L|, |Lref|), worst channel;
@@ -172,16 +250,67 @@ static double bench_rel_error(const hrm_real L[HRM_CHANNELS], const long double 
 }
 
 /* ------------------------------------------------------------------------ */
-/* One measurement: a row of the table                                      */
+/* Timing                                                                   */
+/* ------------------------------------------------------------------------ */
+
+static int bench_timings = 5;            /* timed batches; the median is reported */
+static double bench_batch_seconds = 1e-3; /* a timed batch lasts at least this long */
+static volatile double bench_sink;        /* keeps timed work from being optimised away */
+
+static double bench_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static int bench_cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+typedef void (*bench_batch_fn)(void *ctx, long reps);
+
+/* Nanoseconds per repetition of fn: the median over bench_timings batches,
+   each repeated until it lasts bench_batch_seconds. */
+static double bench_time(bench_batch_fn fn, void *ctx)
+{
+    double t[16], batch, start;
+    long reps = 1;
+    int i, n = bench_timings < 16 ? bench_timings : 16;
+    for (;;) {
+        start = bench_seconds();
+        fn(ctx, reps);
+        batch = bench_seconds() - start;
+        if (batch >= bench_batch_seconds || reps >= (1L << 28)) break;
+        /* Jump close to the target, at most x16 at a time. */
+        if (batch > bench_batch_seconds / 16)
+            reps = (long)ceil((double)reps * 1.1 * bench_batch_seconds / batch);
+        else
+            reps *= 16;
+    }
+    for (i = 0; i < n; ++i) {
+        start = bench_seconds();
+        fn(ctx, reps);
+        t[i] = 1e9 * (bench_seconds() - start) / (double)reps;
+    }
+    qsort(t, (size_t)n, sizeof t[0], bench_cmp_double);
+    return t[n / 2];
+}
+
+/* ------------------------------------------------------------------------ */
+/* One measurement: a row                                                   */
 /* ------------------------------------------------------------------------ */
 
 typedef struct bench_row {
-    int scene, method, warp;
-    long param;          /* N */
+    int scene, method;
+    bench_warp_id warp;
+    double param;        /* N, or rtol */
     hrm_stats stats;     /* of one ray (the first seed) */
     double rel_error;    /* RMS over seeds for random methods */
     hrm_status status;   /* an error if any seed gave one, else the largest warning */
-    double ns_per_ray;
+    double ns_per_ray;   /* NaN: not timed */
 } bench_row;
 
 typedef struct bench_case {
@@ -192,20 +321,12 @@ typedef struct bench_case {
     int seeds;
 } bench_case;
 
-static double bench_seconds(void)
+static void bench_solve_batch(void *ctx, long reps)
 {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static volatile double bench_sink; /* keeps timed solves from being optimised away */
-
-static double bench_time_batch(const bench_case *bc, long reps)
-{
+    const bench_case *bc = (const bench_case *)ctx;
     hrm_options opt = bc->options;
     hrm_result res;
-    double start = bench_seconds(), sum = 0;
+    double sum = 0;
     long r;
     for (r = 0; r < reps; ++r) {
         opt.seed = (uint64_t)(r % bc->seeds) + 1;
@@ -213,59 +334,33 @@ static double bench_time_batch(const bench_case *bc, long reps)
         sum += (double)res.L[0];
     }
     bench_sink = sum;
-    return bench_seconds() - start;
-}
-
-static int bench_cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-/* Median over BENCH_TIMINGS batches, each repeated until it lasts
-   BENCH_BATCH_SECONDS, of the time per solve. */
-static double bench_time(const bench_case *bc)
-{
-    double t[BENCH_TIMINGS], batch;
-    long reps = 1;
-    int i;
-    for (;;) {
-        batch = bench_time_batch(bc, reps);
-        if (batch >= BENCH_BATCH_SECONDS || reps >= (1L << 28)) break;
-        /* Jump close to the target, at most x16 at a time. */
-        if (batch > BENCH_BATCH_SECONDS / 16)
-            reps = (long)ceil((double)reps * 1.1 * BENCH_BATCH_SECONDS / batch);
-        else
-            reps *= 16;
-    }
-    for (i = 0; i < BENCH_TIMINGS; ++i) t[i] = 1e9 * bench_time_batch(bc, reps) / (double)reps;
-    qsort(t, BENCH_TIMINGS, sizeof t[0], bench_cmp_double);
-    return t[BENCH_TIMINGS / 2];
 }
 
 static long bench_count_mismatches;
 
 /* hrm's stats against the callbacks it made: every source evaluation calls
-   Li (each scene scatters everywhere), and Le where there is emission;
-   every medium evaluation calls sigma_a and sigma_s, where they exist. */
-static void bench_check_counts(const bench_scene *sc, const bench_method *me, int N,
+   Li where the scene has it (each such scene scatters everywhere) and Le
+   where it has emission (absorbing everywhere); every medium evaluation
+   calls sigma_a and sigma_s, where they exist. */
+static void bench_check_counts(const bench_scene *sc, const bench_method *me, const bench_row *r,
                                const hrm_medium *m, const bench_calls *calls, const hrm_stats *st)
 {
-    int ok = calls->li == st->evals;
+    int ok = 1;
+    if (m->Li) ok &= calls->li == st->evals;
     if (m->Le) ok &= calls->le == st->evals;
     if (m->sigma_a) ok &= calls->sigma_a == st->medium_evals;
     if (m->sigma_s) ok &= calls->sigma_s == st->medium_evals;
     if (ok) return;
     if (++bench_count_mismatches <= 10)
         fprintf(stderr,
-                "bench: count mismatch: %s %s N=%d: stats evals=%ld medium_evals=%ld, "
-                "callbacks Li=%ld Le=%ld sigma_a=%ld sigma_s=%ld\n",
-                sc->name, me->name, N, st->evals, st->medium_evals, calls->li, calls->le,
-                calls->sigma_a, calls->sigma_s);
+                "\nbench: count mismatch: %s %s warp %s param %g: stats evals=%ld "
+                "medium_evals=%ld, callbacks Li=%ld Le=%ld sigma_a=%ld sigma_s=%ld\n",
+                sc->name, me->name, bench_warp_names[r->warp], r->param, st->evals,
+                st->medium_evals, calls->li, calls->le, calls->sigma_a, calls->sigma_s);
 }
 
 static void bench_run_case(const bench_scene *sc, const bench_reference *ref,
-                           const bench_method *me, const bench_case *bc, bench_row *row)
+                           const bench_method *me, const bench_case *bc, int timed, bench_row *row)
 {
     hrm_options opt = bc->options;
     hrm_result res;
@@ -280,14 +375,79 @@ static void bench_run_case(const bench_scene *sc, const bench_reference *ref,
         bc->calls->params = sc->params;
         st = hrm_solve(bc->medium, (hrm_real)bc->t0, (hrm_real)bc->t1, &opt, &res);
         if (st >= 0) /* a failed solve stops mid-way: nothing to compare */
-            bench_check_counts(sc, me, opt.steps, bc->medium, bc->calls, &res.stats);
+            bench_check_counts(sc, me, row, bc->medium, bc->calls, &res.stats);
         if (i == 0) row->stats = res.stats;
         if (st < 0 ? row->status >= 0 : row->status >= 0 && st > row->status) row->status = st;
-        err = bench_rel_error(res.L, ref->L);
+        err = st < 0 ? (double)NAN : bench_rel_error(res.L, ref->L);
         sumsq += err * err;
     }
     row->rel_error = bc->seeds > 1 ? sqrt(sumsq / bc->seeds) : err;
-    row->ns_per_ray = bench_time(bc);
+    row->ns_per_ray = timed ? bench_time(bench_solve_batch, (void *)bc) : (double)NAN;
+}
+
+/* ------------------------------------------------------------------------ */
+/* Rows and sweeps                                                          */
+/* ------------------------------------------------------------------------ */
+
+/* A sweep: the rows of one scene x method x warp, in sweep order (N
+   increasing, or rtol decreasing). */
+typedef struct bench_sweep {
+    int scene, method;
+    bench_warp_id warp;
+    int first, count;    /* into bench_rows */
+    /* fixed-step methods: the fitted convergence order */
+    int points;          /* rows above the fit floor */
+    double order;        /* -(least-squares slope of log error vs log evals) */
+    double tail;         /* the same over the last BENCH_TAIL of those rows */
+} bench_sweep;
+
+static bench_row *bench_rows;
+static int bench_nrows, bench_rows_cap;
+static bench_sweep *bench_sweeps;
+static int bench_nsweeps, bench_sweeps_cap;
+
+static void *bench_grow(void *p, int *cap, int need, size_t size)
+{
+    if (need <= *cap) return p;
+    *cap = *cap ? 2 * *cap : 256;
+    if (*cap < need) *cap = need;
+    p = realloc(p, (size_t)*cap * size);
+    if (!p) {
+        fprintf(stderr, "bench: out of memory\n");
+        exit(BENCH_EXIT_OUTPUT);
+    }
+    return p;
+}
+
+static bench_row *bench_new_row(void)
+{
+    bench_rows = (bench_row *)bench_grow(bench_rows, &bench_rows_cap, bench_nrows + 1,
+                                         sizeof *bench_rows);
+    memset(&bench_rows[bench_nrows], 0, sizeof *bench_rows);
+    return &bench_rows[bench_nrows++];
+}
+
+static bench_sweep *bench_new_sweep(void)
+{
+    bench_sweeps = (bench_sweep *)bench_grow(bench_sweeps, &bench_sweeps_cap, bench_nsweeps + 1,
+                                             sizeof *bench_sweeps);
+    memset(&bench_sweeps[bench_nsweeps], 0, sizeof *bench_sweeps);
+    return &bench_sweeps[bench_nsweeps++];
+}
+
+static const bench_sweep *bench_find_sweep(int scene, int method, bench_warp_id warp)
+{
+    int i;
+    for (i = 0; i < bench_nsweeps; ++i)
+        if (bench_sweeps[i].scene == scene && bench_sweeps[i].method == method &&
+            bench_sweeps[i].warp == warp)
+            return &bench_sweeps[i];
+    return NULL;
+}
+
+static int bench_finite(double x)
+{
+    return x - x == 0;
 }
 
 /* ------------------------------------------------------------------------ */
@@ -295,14 +455,6 @@ static void bench_run_case(const bench_scene *sc, const bench_reference *ref,
 /* ------------------------------------------------------------------------ */
 
 #define BENCH_TAIL 4 /* the finest points, for the asymptotic order */
-
-typedef struct bench_fit {
-    int scene, method, warp;
-    int points;          /* rows above the floor */
-    double order;        /* -(least-squares slope of log error vs log evals) */
-    double tail;         /* the same over the last BENCH_TAIL of those rows */
-    long evals_lo, evals_hi;
-} bench_fit;
 
 /* -(least-squares slope) of y against x; NaN with fewer than 2 distinct x. */
 static double bench_order(const double *x, const double *y, int n)
@@ -319,117 +471,228 @@ static double bench_order(const double *x, const double *y, int n)
     return n >= 2 && den > 0 ? -(n * sxy - sx * sy) / den : (double)NAN;
 }
 
-static void bench_fit_rows(const bench_row *rows, int n, bench_fit *fit)
+static void bench_fit_sweep(bench_sweep *sw)
 {
     double x[BENCH_MAX_PARAMS], y[BENCH_MAX_PARAMS];
     int i, k = 0, t;
-    fit->evals_lo = fit->evals_hi = 0;
-    for (i = 0; i < n; ++i) {
-        const bench_row *r = &rows[i];
-        if (!(r->rel_error > BENCH_FIT_FLOOR) || r->rel_error - r->rel_error != 0 ||
+    for (i = 0; i < sw->count; ++i) {
+        const bench_row *r = &bench_rows[sw->first + i];
+        if (!(r->rel_error > BENCH_FIT_FLOOR) || !bench_finite(r->rel_error) ||
             r->stats.evals <= 0)
             continue;
         x[k] = log((double)r->stats.evals);
         y[k] = log(r->rel_error);
-        if (!k || r->stats.evals < fit->evals_lo) fit->evals_lo = r->stats.evals;
-        if (!k || r->stats.evals > fit->evals_hi) fit->evals_hi = r->stats.evals;
         ++k;
     }
-    fit->points = k;
-    fit->order = bench_order(x, y, k);
+    sw->points = k;
+    sw->order = bench_order(x, y, k);
     t = k < BENCH_TAIL ? k : BENCH_TAIL;
-    fit->tail = bench_order(x + (k - t), y + (k - t), t);
+    sw->tail = bench_order(x + (k - t), y + (k - t), t);
 }
 
 /* ------------------------------------------------------------------------ */
-/* Output                                                                   */
+/* Configuration                                                            */
 /* ------------------------------------------------------------------------ */
 
-#define BENCH_CSV_HEADER \
-    "scene,method,warp,param,evals,medium_evals,steps,rejected,rel_error,status,ns_per_ray"
+typedef struct bench_config {
+    int csv, quick, list, timed;
+    int scene_on[BENCH_SCENE_COUNT], any_scene;
+    int method_on[BENCH_MAX_METHODS], any_method;
+    int warp_on[BENCH_WARP_COUNT], natural_on, any_warp;
+    double steps[BENCH_MAX_PARAMS], tols[BENCH_MAX_PARAMS];
+    int nsteps, ntols;      /* from --steps / --tol; 0: the defaults */
+    int user_steps, user_tols;
+    hrm_control control;
+    const char *out_dir;
+    int seeds;
+} bench_config;
 
-static void bench_print_row(const bench_row *r, int csv)
+static const char *bench_control_name(hrm_control c)
 {
-    const char *scene = bench_scenes[r->scene].name, *method = bench_methods[r->method].name;
-    const char *warp = bench_warps[r->warp].name;
-    if (csv) {
-        printf("%s,%s,%s,%ld,%ld,%ld,%ld,%ld,%.6e,%d,%.1f\n", scene, method, warp, r->param,
-               r->stats.evals, r->stats.medium_evals, r->stats.steps, r->stats.rejected,
-               r->rel_error, (int)r->status, r->ns_per_ray);
-        return;
+    return c == HRM_CONTROL_MUNOZ ? "munoz" : c == HRM_CONTROL_GONTERMAN ? "gonterman" : "pi";
+}
+
+static int bench_scene_selected(const bench_config *cfg, int si)
+{
+    return !cfg->any_scene || cfg->scene_on[si];
+}
+
+static int bench_method_selected(const bench_config *cfg, int mi)
+{
+    const bench_method *me = &bench_methods[mi];
+    if (me->kind == BENCH_OTHER) return 0;
+    if (cfg->any_method && !cfg->method_on[mi]) return 0;
+    /* --steps alone runs the fixed-step methods, --tol alone the adaptive ones */
+    if (bench_is_swept_over_n(me)) return !cfg->user_tols || cfg->user_steps;
+    return !cfg->user_steps || cfg->user_tols;
+}
+
+/* The warps a scene runs with: none and its natural warp, or those asked. */
+static int bench_scene_warps(const bench_config *cfg, const bench_scene *sc,
+                             bench_warp_id out[BENCH_WARP_COUNT])
+{
+    hrm_options probe;
+    int w, n = 0;
+    for (w = 0; w < BENCH_WARP_COUNT; ++w) {
+        int on = cfg->any_warp ? cfg->warp_on[w] || (cfg->natural_on && (int)sc->natural_warp == w)
+                               : w == BENCH_WARP_NONE || (int)sc->natural_warp == w;
+        if (on && bench_warp_apply(sc, (bench_warp_id)w, &probe)) out[n++] = (bench_warp_id)w;
     }
-    printf("%-12s %-16s %-5s %5ld %7ld %12ld %10.3e %11.1f", scene, method, warp, r->param,
-           r->stats.evals, r->stats.medium_evals, r->rel_error, r->ns_per_ray);
-    if (r->status != HRM_OK)
-        printf("  status %d: %s", (int)r->status, hrm_status_string(r->status));
+    return n;
+}
+
+static int bench_params_of(const bench_config *cfg, const bench_method *me, const double **p)
+{
+    if (bench_is_swept_over_n(me)) {
+        *p = cfg->steps;
+        return cfg->nsteps;
+    }
+    *p = cfg->tols;
+    return cfg->ntols;
+}
+
+/* ------------------------------------------------------------------------ */
+/* Progress (stderr)                                                        */
+/* ------------------------------------------------------------------------ */
+
+typedef struct bench_progress {
+    long done, total;
+    double start;
+    int tty;
+    int last_scene;
+} bench_progress;
+
+static void bench_progress_show(bench_progress *pg, const char *scene, const char *method,
+                                const char *warp)
+{
+    double pct = pg->total ? 100.0 * (double)pg->done / (double)pg->total : 100.0;
+    double el = bench_seconds() - pg->start;
+    if (pg->tty) {
+        fprintf(stderr, "\r\033[K[%3.0f%%] %5.1f s  %-11s %-22s %-11s", pct, el, scene, method,
+                warp);
+        fflush(stderr);
+    }
+}
+
+/* ------------------------------------------------------------------------ */
+/* Per-scene tables (stdout)                                                */
+/* ------------------------------------------------------------------------ */
+
+static char bench_flag(hrm_status st)
+{
+    return st < 0 ? '!' : st > 0 ? '*' : ' ';
+}
+
+static void bench_table_header(const char *what, const double *params, int n, int tol)
+{
+    int k;
+    printf("  %s\n  %-22s %-11s", what, "method", "warp");
+    for (k = 0; k < n; ++k) {
+        if (tol) printf(" %8.0e", params[k]);
+        else printf(" %8.0f", params[k]);
+    }
     printf("\n");
 }
 
-static void bench_print_table_header(void)
+/* One matrix per kind of sweep: rows method x warp, columns the parameter;
+   value 0: rel_error, 1: evals. */
+static void bench_print_matrix(const bench_config *cfg, int si, int adaptive, int value)
 {
-    printf("%-12s %-16s %-5s %5s %7s %12s %10s %11s\n", "scene", "method", "warp", "N", "evals",
-           "medium_evals", "rel_error", "ns_per_ray");
-}
-
-static void bench_print_order(double order)
-{
-    if (order == order) printf(" %7.2f", order);
-    else printf(" %7s", "n/a");
-}
-
-static void bench_print_fits(const bench_fit *fits, int n)
-{
-    int i;
-    printf("\nFitted convergence order: -(least-squares slope of log rel_error vs log evals)\n"
-           "over the N whose rel_error is above %g (monte-carlo: of the RMS error);\n"
-           "tail: the same over the last %d of those N only (the asymptotic order).\n",
-           BENCH_FIT_FLOOR, BENCH_TAIL);
-    printf("%-12s %-16s %-5s %7s %7s %8s %7s  %s\n", "scene", "method", "warp", "order", "tail",
-           "nominal", "points", "evals");
-    for (i = 0; i < n; ++i) {
-        const bench_fit *f = &fits[i];
-        const bench_method *me = &bench_methods[f->method];
-        printf("%-12s %-16s %-5s", bench_scenes[f->scene].name, me->name,
-               bench_warps[f->warp].name);
-        bench_print_order(f->order);
-        bench_print_order(f->tail);
-        if (me->order > 0) printf(" %8g", me->order);
-        else printf(" %8s", "?");
-        printf(" %7d  ", f->points);
-        if (f->points) printf("%ld..%ld", f->evals_lo, f->evals_hi);
+    const double *params = adaptive ? cfg->tols : cfg->steps;
+    int n = adaptive ? cfg->ntols : cfg->nsteps, i, k, any = 0;
+    for (i = 0; i < bench_nsweeps; ++i) {
+        const bench_sweep *sw = &bench_sweeps[i];
+        const bench_method *me = &bench_methods[sw->method];
+        if (sw->scene != si || (me->kind == BENCH_ADAPTIVE) != adaptive) continue;
+        if (!any) {
+            bench_table_header(adaptive ? (value ? "adaptive methods: evaluations by rtol"
+                                                 : "adaptive methods: achieved rel_error by rtol "
+                                                   "(Munoz 2014 Fig. 4, columns 4-5)")
+                                        : "fixed-step methods: rel_error by N (monte-carlo: RMS "
+                                          "over seeds)",
+                               params, n, adaptive);
+            any = 1;
+        }
+        printf("  %-22s %-11s", me->name, bench_warp_names[sw->warp]);
+        for (k = 0; k < sw->count; ++k) {
+            const bench_row *r = &bench_rows[sw->first + k];
+            if (value) printf(" %7ld%c", r->stats.evals, bench_flag(r->status));
+            else if (r->status < 0 || !bench_finite(r->rel_error)) printf(" %8s", "error!");
+            else printf(" %7.1e%c", r->rel_error, bench_flag(r->status));
+        }
         printf("\n");
     }
-    printf("(nominal: hrm.h's order for smooth integrands; a sharp shadow drags fixed-step\n"
-           "methods to first order)\n");
+}
+
+static void bench_print_scene_tables(const bench_config *cfg, int si)
+{
+    bench_print_matrix(cfg, si, 0, 0);
+    bench_print_matrix(cfg, si, 1, 0);
+    bench_print_matrix(cfg, si, 1, 1);
+    printf("  (* a warning status: the budget of %ld evaluations, h_min or storage ran out, "
+           "best estimate shown; ! an error status)\n",
+           BENCH_MAX_EVALS);
 }
 
 /* ------------------------------------------------------------------------ */
 /* The run                                                                  */
 /* ------------------------------------------------------------------------ */
 
-typedef struct bench_config {
-    int csv, quick, list;
-    int scene_on[BENCH_SCENE_COUNT], any_scene;
-    int method_on[HRM_METHOD_COUNT], any_method;
-} bench_config;
-
 typedef struct bench_totals {
     int errors;           /* rows in which a solve returned an error status */
     long solves;
-    bench_fit fits[BENCH_SCENE_COUNT * HRM_METHOD_COUNT * BENCH_WARP_COUNT];
-    int nfits;
+    bench_reference refs[BENCH_SCENE_COUNT];
+    int ref_bad;          /* references failing their self-check */
 } bench_totals;
 
+static void bench_case_init(bench_case *bc, const bench_config *cfg, const bench_scene *sc,
+                            const bench_method *me, bench_warp_id warp, double param,
+                            const hrm_medium *medium, bench_calls *calls)
+{
+    bc->medium = medium;
+    bc->calls = calls;
+    bc->t0 = sc->t0;
+    bc->t1 = sc->t1;
+    bc->options = hrm_default_options(me->id);
+    bc->options.gk_mode = me->gk_mode;
+    if (bench_is_swept_over_n(me)) {
+        bc->options.steps = (int)param;
+    } else {
+        bc->options.rtol = (hrm_real)param;
+        bc->options.max_evals = BENCH_MAX_EVALS;
+        bc->options.control = cfg->control;
+    }
+    bench_warp_apply(sc, warp, &bc->options);
+    bc->seeds = me->kind == BENCH_RANDOM ? cfg->seeds : 1;
+}
+
+static void bench_print_csv_row(FILE *f, const bench_row *r)
+{
+    fprintf(f, "%s,%s,%s,%g,%ld,%ld,%ld,%ld,%.6e,%d,%.1f\n", bench_scenes[r->scene].name,
+            bench_methods[r->method].name, bench_warp_names[r->warp], r->param, r->stats.evals,
+            r->stats.medium_evals, r->stats.steps, r->stats.rejected, r->rel_error, (int)r->status,
+            r->ns_per_ray);
+}
+
+#define BENCH_CSV_HEADER \
+    "scene,method,warp,param,evals,medium_evals,steps,rejected,rel_error,status,ns_per_ray"
+
 static void bench_run_scene(const bench_config *cfg, int si, const ref_rule *rule,
-                            const int *steps, int nsteps, bench_totals *tot)
+                            bench_totals *tot, bench_progress *pg)
 {
     const bench_scene *sc = &bench_scenes[si];
-    bench_reference ref;
+    bench_reference *ref = &tot->refs[si];
     bench_calls calls;
     hrm_medium medium;
-    int mi, wi, k, skipped = 0;
+    bench_warp_id warps[BENCH_WARP_COUNT];
+    int nw = bench_scene_warps(cfg, sc, warps), mi, wi, k;
 
-    bench_reference_compute(sc, rule, &ref);
+    bench_reference_compute(sc, rule, ref);
+    if (!(ref->accuracy <= BENCH_REF_CHECK)) {
+        tot->ref_bad++;
+        fprintf(stderr, "\nbench: scene %s: reference accuracy %.1Le worse than %.0Le\n", sc->name,
+                ref->accuracy, BENCH_REF_CHECK);
+    }
     memset(&calls, 0, sizeof calls);
     calls.params = sc->params;
     memset(&medium, 0, sizeof medium);
@@ -438,207 +701,97 @@ static void bench_run_scene(const bench_config *cfg, int si, const ref_rule *rul
 
     if (!cfg->csv) {
         printf("\n== scene %s: %s\n", sc->name, sc->description);
-        printf("  ray t0 = %g, t1 = %g\n", sc->t0, sc->t1);
+        printf("  ray t0 = %g, t1 = %g; %s\n", sc->t0, sc->t1,
+               sc->smooth ? "smooth integrand" : "integrand with jumps (shadow edges)");
         sc->print_params(stdout, sc->params);
-        bench_reference_print(stdout, sc, &ref);
-        bench_print_table_header();
+        bench_reference_print(stdout, sc, ref);
+        printf("  warps:");
+        for (wi = 0; wi < nw; ++wi) {
+            hrm_options o;
+            bench_warp_apply(sc, warps[wi], &o);
+            printf("%s %s", wi ? "," : "", bench_warp_names[warps[wi]]);
+            if (warps[wi] == BENCH_WARP_DISTANCE) printf(" (sigma_ref: mean sigma_t at t0)");
+            if (warps[wi] == BENCH_WARP_EQUIANGULAR)
+                printf(" (delta = %g, D = %g, from hrm_equiangular_warp)", (double)o.warp.delta,
+                       (double)o.warp.D);
+        }
+        printf("\n");
     }
     for (mi = 0; mi < bench_method_count; ++mi) {
         const bench_method *me = &bench_methods[mi];
-        if (cfg->any_method && !cfg->method_on[mi]) continue;
-        if (me->kind == BENCH_OTHER) {
-            skipped++;
-            continue;
-        }
-        for (wi = 0; wi < BENCH_WARP_COUNT; ++wi) {
-            bench_row rows[BENCH_MAX_PARAMS];
-            bench_fit *fit = &tot->fits[tot->nfits++];
-            for (k = 0; k < nsteps; ++k) {
+        const double *params;
+        int np;
+        if (!bench_method_selected(cfg, mi)) continue;
+        np = bench_params_of(cfg, me, &params);
+        for (wi = 0; wi < nw; ++wi) {
+            bench_sweep *sw = bench_new_sweep();
+            sw->scene = si;
+            sw->method = mi;
+            sw->warp = warps[wi];
+            sw->first = bench_nrows;
+            for (k = 0; k < np; ++k) {
                 bench_case bc;
-                bench_row *r = &rows[k];
-                bc.medium = &medium;
-                bc.calls = &calls;
-                bc.t0 = sc->t0;
-                bc.t1 = sc->t1;
-                bc.options = hrm_default_options(me->id);
-                bc.options.steps = steps[k];
-                bc.seeds = me->kind == BENCH_RANDOM ? BENCH_SEEDS : 1;
-                bench_warps[wi].apply(sc, &bc.options);
+                bench_row *r;
+                bench_progress_show(pg, sc->name, me->name, bench_warp_names[warps[wi]]);
+                bench_case_init(&bc, cfg, sc, me, warps[wi], params[k], &medium, &calls);
+                r = bench_new_row();
                 r->scene = si;
                 r->method = mi;
-                r->warp = wi;
-                r->param = steps[k];
-                bench_run_case(sc, &ref, me, &bc, r);
+                r->warp = warps[wi];
+                r->param = params[k];
+                bench_run_case(sc, ref, me, &bc, cfg->timed, r);
                 tot->solves += bc.seeds;
                 if (r->status < 0) tot->errors++;
-                bench_print_row(r, cfg->csv);
+                if (cfg->csv) bench_print_csv_row(stdout, r);
+                pg->done++;
             }
-            fit->scene = si;
-            fit->method = mi;
-            fit->warp = wi;
-            bench_fit_rows(rows, nsteps, fit);
-            fflush(stdout);
+            sw = &bench_sweeps[bench_nsweeps - 1]; /* bench_new_row never moves sweeps */
+            sw->count = bench_nrows - sw->first;
+            if (bench_is_swept_over_n(me)) bench_fit_sweep(sw);
         }
     }
-    if (skipped && !cfg->csv) {
-        printf("not run (no sweep for them in the bench yet):");
-        for (mi = 0; mi < bench_method_count; ++mi)
-            if (bench_methods[mi].kind == BENCH_OTHER && (!cfg->any_method || cfg->method_on[mi]))
-                printf(" %s", bench_methods[mi].name);
-        printf("\n");
+    if (!cfg->csv) {
+        bench_print_scene_tables(cfg, si);
+        fflush(stdout);
     }
 }
 
 /* ------------------------------------------------------------------------ */
-/* Command line                                                             */
+/* Summaries                                                                */
 /* ------------------------------------------------------------------------ */
 
-static void bench_usage(FILE *out)
+/* A line of output that goes to stdout and, when md is set, to the
+   markdown summary too. */
+typedef struct bench_out {
+    FILE *md;
+    int quiet; /* --csv: no tables on stdout */
+} bench_out;
+
+static void bench_both(const bench_out *o, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+#include <stdarg.h>
+static void bench_both(const bench_out *o, const char *fmt, ...)
 {
-    fprintf(out,
-            "usage: bench [--csv] [--quick] [--scene NAME]... [--method NAME]... [--list] [--help]\n"
-            "Single-ray convergence and speed of every hrm.h method on every scene.\n"
-            "  --csv          print CSV rows instead of the tables, under the header\n"
-            "                 %s\n"
-            "  --quick        N = 1..64 instead of 1..1024\n"
-            "  --scene NAME   run only this scene (repeatable)\n"
-            "  --method NAME  run only this method (repeatable)\n"
-            "  --list         list the scenes and methods, then exit\n"
-            "  --help         this text\n"
-            "Exit status: 0 ok, 1 a solve returned an error status, 2 usage error.\n",
-            BENCH_CSV_HEADER);
+    va_list ap;
+    if (!o->quiet) {
+        va_start(ap, fmt);
+        vprintf(fmt, ap);
+        va_end(ap);
+    }
+    if (o->md) {
+        va_start(ap, fmt);
+        vfprintf(o->md, fmt, ap);
+        va_end(ap);
+    }
 }
 
-static void bench_list_names(FILE *out, int scenes)
+static void bench_fmt_order(char *buf, size_t n, double v)
 {
-    int i;
-    if (scenes)
-        for (i = 0; i < BENCH_SCENE_COUNT; ++i) fprintf(out, "%s%s", i ? ", " : "", bench_scenes[i].name);
-    else
-        for (i = 0; i < bench_method_count; ++i) fprintf(out, "%s%s", i ? ", " : "", bench_methods[i].name);
-    fprintf(out, "\n");
+    if (bench_finite(v)) snprintf(buf, n, "%.2f", v);
+    else snprintf(buf, n, "n/a");
 }
 
-static void bench_list(void)
-{
-    int i;
-    printf("scenes:\n");
-    for (i = 0; i < BENCH_SCENE_COUNT; ++i)
-        printf("  %-12s %s\n", bench_scenes[i].name, bench_scenes[i].description);
-    printf("methods:\n");
-    for (i = 0; i < bench_method_count; ++i) {
-        printf("  %-16s %s", bench_methods[i].name, bench_kind_name(bench_methods[i].kind));
-        if (bench_methods[i].order > 0) printf(", order %g", bench_methods[i].order);
-        printf("\n");
-    }
-    printf("warps:\n");
-    for (i = 0; i < BENCH_WARP_COUNT; ++i) printf("  %s\n", bench_warps[i].name);
-}
-
-/* Returns 0, or 2 after printing the error. */
-static int bench_parse(int argc, char **argv, bench_config *cfg)
-{
-    int i, k;
-    memset(cfg, 0, sizeof *cfg);
-    for (i = 1; i < argc; ++i) {
-        const char *a = argv[i], *value = NULL;
-        int is_scene = 0, is_method = 0;
-        if (!strcmp(a, "--csv")) cfg->csv = 1;
-        else if (!strcmp(a, "--quick")) cfg->quick = 1;
-        else if (!strcmp(a, "--list")) cfg->list = 1;
-        else if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            bench_usage(stdout);
-            exit(0);
-        } else if (!strcmp(a, "--scene") || !strcmp(a, "--method")) {
-            is_scene = a[2] == 's';
-            is_method = !is_scene;
-            if (i + 1 >= argc) {
-                fprintf(stderr, "bench: %s needs a name\n", a);
-                bench_usage(stderr);
-                return 2;
-            }
-            value = argv[++i];
-        } else if (!strncmp(a, "--scene=", 8)) {
-            is_scene = 1;
-            value = a + 8;
-        } else if (!strncmp(a, "--method=", 9)) {
-            is_method = 1;
-            value = a + 9;
-        } else {
-            fprintf(stderr, "bench: unknown option '%s'\n", a);
-            bench_usage(stderr);
-            return 2;
-        }
-        if (is_scene) {
-            for (k = 0; k < BENCH_SCENE_COUNT && strcmp(value, bench_scenes[k].name); ++k) {}
-            if (k == BENCH_SCENE_COUNT) {
-                fprintf(stderr, "bench: unknown scene '%s'; valid scenes: ", value);
-                bench_list_names(stderr, 1);
-                return 2;
-            }
-            cfg->scene_on[k] = cfg->any_scene = 1;
-        }
-        if (is_method) {
-            for (k = 0; k < bench_method_count && strcmp(value, bench_methods[k].name); ++k) {}
-            if (k == bench_method_count) {
-                fprintf(stderr, "bench: unknown method '%s'; valid methods: ", value);
-                bench_list_names(stderr, 0);
-                return 2;
-            }
-            cfg->method_on[k] = cfg->any_method = 1;
-        }
-    }
-    return 0;
-}
-
-int main(int argc, char **argv)
-{
-    static bench_totals tot;
-    bench_config cfg;
-    ref_rule rule;
-    const int *steps = bench_steps_full;
-    int nsteps = (int)(sizeof bench_steps_full / sizeof bench_steps_full[0]);
-    int si, v = hrm_version();
-    double start = bench_seconds();
-
-    bench_methods_init();
-    if (bench_parse(argc, argv, &cfg)) return 2;
-    if (cfg.list) {
-        bench_list();
-        return 0;
-    }
-    if (cfg.quick) {
-        steps = bench_steps_quick;
-        nsteps = (int)(sizeof bench_steps_quick / sizeof bench_steps_quick[0]);
-    }
-    ref_rule_init(&rule);
-
-    if (cfg.csv) {
-        printf("%s\n", BENCH_CSV_HEADER);
-    } else {
-        printf("hrm.h %d.%d.%d single-ray benchmark, N = %d..%d (doubling), warp none\n",
-               v / 10000, v / 100 % 100, v % 100, steps[0], steps[nsteps - 1]);
-        printf("rel_error: |L - Lref| / max(|L|, |Lref|) (Munoz 2014), worst of %d channels;\n"
-               "  monte-carlo: RMS over seeds 1..%d (evals and ns_per_ray are per ray)\n"
-               "evals: source (Li/Le) evaluations; medium_evals: sigma/transmittance evaluations\n"
-               "ns_per_ray: median of %d batches of repeated solves, each >= %g ms "
-               "(CLOCK_MONOTONIC)\n",
-               HRM_CHANNELS, BENCH_SEEDS, BENCH_TIMINGS, BENCH_BATCH_SECONDS * 1e3);
-    }
-    for (si = 0; si < BENCH_SCENE_COUNT; ++si) {
-        if (cfg.any_scene && !cfg.scene_on[si]) continue;
-        bench_run_scene(&cfg, si, &rule, steps, nsteps, &tot);
-    }
-    if (!cfg.csv) {
-        bench_print_fits(tot.fits, tot.nfits);
-        printf("\nevaluation counts: hrm's stats %s the callbacks made in %ld solves",
-               bench_count_mismatches ? "disagree with" : "match", tot.solves);
-        if (bench_count_mismatches) printf(" (%ld mismatches, see stderr)", bench_count_mismatches);
-        printf("\nrows with an error status: %d\n", tot.errors);
-        printf("run time: %.1f s\n", bench_seconds() - start);
-    } else if (bench_count_mismatches) {
-        fprintf(stderr, "bench: %ld solves with evaluation counts that disagree with the callbacks\n",
-                bench_count_mismatches);
-    }
-    return tot.errors ? 1 : 0;
-}

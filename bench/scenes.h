@@ -4,7 +4,13 @@
    given twice: as an hrm_medium (double callbacks, what hrm sees) and as a
    long double integrand Tr(t0, s) S(s) with its split points, or a closed
    form, for the reference (reference.h). The two share only the parameter
-   values. The first three are the scenes of Munoz 2014 Fig. 4. */
+   values. The first three are the scenes of Munoz 2014 Fig. 4; then a
+   smooth and a high-frequency heterogeneous medium, emission alone, an
+   optically thick and an optically thin medium.
+
+   Each scene also names its natural warp (importance sampling, Munoz 2014
+   s.5): distance for directional light and heterogeneous media, equiangular
+   toward the point light where there is one. */
 
 #include <stdio.h>
 
@@ -27,11 +33,24 @@ typedef struct bench_calls {
 
 #define BENCH_PARAMS(type, user) ((const type *)((const bench_calls *)(user))->params)
 
+typedef enum bench_warp_id {
+    BENCH_WARP_NONE,
+    BENCH_WARP_DISTANCE,    /* sigma_ref 0: mean sigma_t at t0 */
+    BENCH_WARP_EQUIANGULAR, /* toward the scene's point light */
+    BENCH_WARP_COUNT
+} bench_warp_id;
+
 typedef struct bench_scene {
     const char *name;
     const char *description;             /* one line */
     const void *params;
     double t0, t1;
+    int smooth;                          /* integrand analytic along the ray */
+    bench_warp_id natural_warp;
+    /* The point light's position (the ray is x(s) = (s, 0, 0)); NULL or 0:
+       none, and no equiangular warp. */
+    int (*light)(const void *params, double pos[3]);
+    long double ref_panel;               /* reference panel width; 0: REF_PANEL */
     void (*print_params)(FILE *out, const void *params);
     void (*build)(const void *params, hrm_medium *medium); /* all but user */
     /* The reference: Tr(t0, s) S(s) in long double, the points in (t0, t1)
@@ -216,6 +235,20 @@ static void point_print(FILE *out, const void *params)
     point_print_light(out, (const point_params *)params);
 }
 
+static int point_light(const void *params, double pos[3])
+{
+    const point_params *p = (const point_params *)params;
+    pos[0] = p->delta;
+    pos[1] = p->D;
+    pos[2] = 0;
+    return 1;
+}
+
+/* thin: the point scene in an optically thin medium, sigma_t T ~ 1e-3
+   (air lit by a lamp): Tr ~ 1 and the 1/r^2 peak is all there is. */
+static const point_params thin_scene = {
+    {2e-5, 3e-5, 4e-5}, {6e-5, 7e-5, 8e-5}, {10.0, 8.0, 6.0}, 6.0, 0.3};
+
 /* ------------------------------------------------------------------------ */
 /* occluder: the point light with an opaque sphere between it and the ray.  */
 /* Li = 0 where the segment from x(s) to the light meets the sphere.        */
@@ -340,6 +373,11 @@ static int occluder_split(const void *params, long double out[], int max)
     return n;
 }
 
+static int occluder_light(const void *params, double pos[3])
+{
+    return point_light(&((const occluder_params *)params)->light, pos);
+}
+
 static void occluder_print(FILE *out, const void *params)
 {
     const occluder_params *p = (const occluder_params *)params;
@@ -453,25 +491,232 @@ static void hetero_print(FILE *out, const void *params)
     fprintf(out, ", m = %g, nu = %g\n", p->m, p->nu);
 }
 
+/* thick: the directional scene in an optically thick medium, sigma_t T =
+   50, 200 and 1000: the integrand is a boundary layer exp(-sigma_t (1 + k) s)
+   of width 1/120 in blue. */
+static const directional_params thick_scene = {
+    {1.0, 4.0, 20.0}, {4.0, 16.0, 80.0}, {3.0, 2.5, 2.0}, 0.1, 0.2};
+
+/* ------------------------------------------------------------------------ */
+/* hifreq: high-frequency heterogeneous medium from callbacks,              */
+/* sigma_s(s) = a + b1 sin(w1 s + phi) + b2 sin(w2 s + 2 phi), about 50     */
+/* periods of the fast term along the ray; constant sigma_a, no emission,   */
+/* the smooth sky light of hetero.                                          */
+/* ------------------------------------------------------------------------ */
+
+typedef struct hifreq_params {
+    double sigma_a[3];
+    double a[3], b1[3], b2[3], w1, w2, phi[3]; /* sigma_s */
+    double E[3], m, nu;                        /* Li */
+} hifreq_params;
+
+static const hifreq_params hifreq_scene = {
+    {0.05, 0.04, 0.03},
+    {0.50, 0.70, 0.90}, {0.25, 0.35, 0.45}, {0.20, 0.30, 0.40}, 7.0, 31.0, {0.0, 1.0, 2.0},
+    {4.0, 3.5, 3.0}, 0.5, 0.6};
+
+static void hifreq_sigma_a(void *user, hrm_real t, hrm_real out[HRM_CHANNELS])
+{
+    const hifreq_params *p = BENCH_PARAMS(hifreq_params, user);
+    int c;
+    (void)t;
+    ((bench_calls *)user)->sigma_a++;
+    for (c = 0; c < 3; ++c) out[c] = (hrm_real)p->sigma_a[c];
+}
+
+static void hifreq_sigma_s(void *user, hrm_real t, hrm_real out[HRM_CHANNELS])
+{
+    const hifreq_params *p = BENCH_PARAMS(hifreq_params, user);
+    double s = (double)t;
+    int c;
+    ((bench_calls *)user)->sigma_s++;
+    for (c = 0; c < 3; ++c)
+        out[c] = (hrm_real)(p->a[c] + p->b1[c] * sin(p->w1 * s + p->phi[c]) +
+                            p->b2[c] * sin(p->w2 * s + 2 * p->phi[c]));
+}
+
+static void hifreq_li(void *user, hrm_real t, hrm_real out[HRM_CHANNELS])
+{
+    const hifreq_params *p = BENCH_PARAMS(hifreq_params, user);
+    int c;
+    ((bench_calls *)user)->li++;
+    for (c = 0; c < 3; ++c)
+        out[c] = (hrm_real)(p->E[c] * BENCH_PHASE * (1 + p->m * cos(p->nu * (double)t)));
+}
+
+static void hifreq_build(const void *params, hrm_medium *m)
+{
+    (void)params;
+    m->sigma_a = hifreq_sigma_a;
+    m->sigma_s = hifreq_sigma_s;
+    m->Li = hifreq_li;
+}
+
+/* tau(t0, s) = (sigma_a + a)(s - t0) - (b1 / w1)(cos(w1 s + phi) - cos(w1 t0 + phi))
+               - (b2 / w2)(cos(w2 s + 2 phi) - cos(w2 t0 + 2 phi)) */
+static void hifreq_integrand(const void *params, long double t0, long double s,
+                             long double out[HRM_CHANNELS])
+{
+    const hifreq_params *p = (const hifreq_params *)params;
+    int c;
+    for (c = 0; c < 3; ++c) {
+        long double w1 = LD(p->w1), w2 = LD(p->w2), ph = LD(p->phi[c]);
+        long double b1 = LD(p->b1[c]), b2 = LD(p->b2[c]);
+        long double tau = (LD(p->sigma_a[c]) + LD(p->a[c])) * (s - t0) -
+                          b1 / w1 * (cosl(w1 * s + ph) - cosl(w1 * t0 + ph)) -
+                          b2 / w2 * (cosl(w2 * s + 2 * ph) - cosl(w2 * t0 + 2 * ph));
+        long double ss = LD(p->a[c]) + b1 * sinl(w1 * s + ph) + b2 * sinl(w2 * s + 2 * ph);
+        long double li = LD(p->E[c]) * BENCH_PHASE_L * (1 + LD(p->m) * cosl(LD(p->nu) * s));
+        out[c] = expl(-tau) * ss * li;
+    }
+}
+
+static void hifreq_print(FILE *out, const void *params)
+{
+    const hifreq_params *p = (const hifreq_params *)params;
+    fprintf(out, "  callbacks only, no closed-form Tr given to hrm: ");
+    bench_print_vec(out, "sigma_a", p->sigma_a);
+    fprintf(out, "\n  sigma_s(s) = a + b1 sin(w1 s + phi) + b2 sin(w2 s + 2 phi), ");
+    bench_print_vec(out, "a", p->a);
+    fprintf(out, ",\n    ");
+    bench_print_vec(out, "b1", p->b1);
+    fprintf(out, ", ");
+    bench_print_vec(out, "b2", p->b2);
+    fprintf(out, ", w1 = %g, w2 = %g, ", p->w1, p->w2);
+    bench_print_vec(out, "phi", p->phi);
+    fprintf(out, "\n  Li(s) = E p (1 + m cos(nu s)), p = 1/(4 pi), ");
+    bench_print_vec(out, "E", p->E);
+    fprintf(out, ", m = %g, nu = %g\n", p->m, p->nu);
+}
+
+/* ------------------------------------------------------------------------ */
+/* emission: emission only (a flame), no scattering and no Li: homogeneous  */
+/* absorption sigma_a and a Gaussian emission profile                       */
+/* Le(s) = A exp(-(s - c)^2 / (2 w^2)); L has a closed form with erf.       */
+/* ------------------------------------------------------------------------ */
+
+typedef struct emission_params {
+    double sigma_a[3];
+    double A[3], c, w;
+} emission_params;
+
+static const emission_params emission_scene = {{0.3, 0.5, 0.8}, {2.0, 1.5, 1.0}, 6.0, 0.7};
+
+static void emission_le(void *user, hrm_real t, hrm_real out[HRM_CHANNELS])
+{
+    const emission_params *p = BENCH_PARAMS(emission_params, user);
+    double x = ((double)t - p->c) / p->w;
+    int c;
+    ((bench_calls *)user)->le++;
+    for (c = 0; c < 3; ++c) out[c] = (hrm_real)(p->A[c] * exp(-0.5 * x * x));
+}
+
+static void emission_build(const void *params, hrm_medium *m)
+{
+    const emission_params *p = (const emission_params *)params;
+    int c;
+    m->flags = HRM_MEDIUM_HOMOGENEOUS;
+    for (c = 0; c < 3; ++c) {
+        m->const_sigma_a[c] = (hrm_real)p->sigma_a[c];
+        m->const_sigma_s[c] = 0;
+    }
+    m->Le = emission_le;
+}
+
+static void emission_integrand(const void *params, long double t0, long double s,
+                               long double out[HRM_CHANNELS])
+{
+    const emission_params *p = (const emission_params *)params;
+    long double x = (s - LD(p->c)) / LD(p->w);
+    int c;
+    for (c = 0; c < 3; ++c)
+        out[c] = expl(-LD(p->sigma_a[c]) * (s - t0)) * LD(p->sigma_a[c]) * LD(p->A[c]) *
+                 expl(-0.5L * x * x);
+}
+
+/* erf(b) - erf(a), a <= b, without cancellation in the tails. */
+static long double bench_erf_diff(long double a, long double b)
+{
+    if (a > 0) return erfcl(a) - erfcl(b);
+    if (b < 0) return erfcl(-b) - erfcl(-a);
+    return erfl(b) - erfl(a);
+}
+
+/* With x = s - c and m = sigma_a w^2, completing the square:
+   L = sigma_a A exp(sigma_a^2 w^2 / 2 - sigma_a (c - t0)) w sqrt(pi/2)
+       [erf((x1 + m) / (w sqrt 2)) - erf((x0 + m) / (w sqrt 2))]. */
+static void emission_closed(const void *params, long double t0, long double t1,
+                            long double L[HRM_CHANNELS])
+{
+    const emission_params *p = (const emission_params *)params;
+    long double w = LD(p->w), r2 = sqrtl(2.0L);
+    int c;
+    for (c = 0; c < 3; ++c) {
+        long double sa = LD(p->sigma_a[c]), m = sa * w * w;
+        long double x0 = t0 - LD(p->c), x1 = t1 - LD(p->c);
+        L[c] = sa * LD(p->A[c]) * expl(sa * sa * w * w / 2 - sa * (LD(p->c) - t0)) * w *
+               sqrtl(BENCH_PI_L / 2) * bench_erf_diff((x0 + m) / (w * r2), (x1 + m) / (w * r2));
+    }
+}
+
+static void emission_print(FILE *out, const void *params)
+{
+    const emission_params *p = (const emission_params *)params;
+    fprintf(out, "  homogeneous, no scattering (Li absent): ");
+    bench_print_vec(out, "sigma_a", p->sigma_a);
+    fprintf(out, "\n  Le(s) = A exp(-(s - c)^2 / (2 w^2)), source sigma_a Le, ");
+    bench_print_vec(out, "A", p->A);
+    fprintf(out, ", c = %g, w = %g\n", p->c, p->w);
+}
+
 /* ------------------------------------------------------------------------ */
 /* The scene table: a new scene is one more row.                            */
 /* ------------------------------------------------------------------------ */
 
 static const bench_scene bench_scenes[] = {
-    {"directional",
-     "homogeneous medium, directional light whose path through the medium grows along the ray",
-     &directional_scene, 0.0, 10.0, directional_print, directional_build,
-     directional_integrand, NULL, directional_closed},
-    {"point",
-     "homogeneous medium, point light 0.5 from the ray (a sharp but smooth peak)",
-     &point_scene, 0.0, 10.0, point_print, point_build, point_integrand, point_split, NULL},
-    {"occluder",
-     "the point light with an opaque sphere casting a sharp shadow over the peak",
-     &occluder_scene, 0.0, 10.0, occluder_print, occluder_build, occluder_integrand,
-     occluder_split, NULL},
-    {"hetero",
-     "sinusoidal sigma_s from callbacks (hrm integrates tau), emission, smooth sky light",
-     &hetero_scene, 0.0, 10.0, hetero_print, hetero_build, hetero_integrand, NULL, NULL},
+    {.name = "directional",
+     .description = "homogeneous medium, directional light whose path through the medium grows along the ray",
+     .params = &directional_scene, .t0 = 0.0, .t1 = 10.0, .smooth = 1,
+     .natural_warp = BENCH_WARP_DISTANCE, .print_params = directional_print,
+     .build = directional_build, .integrand = directional_integrand,
+     .closed_form = directional_closed},
+    {.name = "point",
+     .description = "homogeneous medium, point light 0.5 from the ray (a sharp but smooth peak)",
+     .params = &point_scene, .t0 = 0.0, .t1 = 10.0, .smooth = 1,
+     .natural_warp = BENCH_WARP_EQUIANGULAR, .light = point_light, .print_params = point_print,
+     .build = point_build, .integrand = point_integrand, .split_points = point_split},
+    {.name = "occluder",
+     .description = "the point light with an opaque sphere casting a sharp shadow over the peak",
+     .params = &occluder_scene, .t0 = 0.0, .t1 = 10.0, .smooth = 0,
+     .natural_warp = BENCH_WARP_EQUIANGULAR, .light = occluder_light,
+     .print_params = occluder_print, .build = occluder_build, .integrand = occluder_integrand,
+     .split_points = occluder_split},
+    {.name = "hetero",
+     .description = "sinusoidal sigma_s from callbacks (hrm integrates tau), emission, smooth sky light",
+     .params = &hetero_scene, .t0 = 0.0, .t1 = 10.0, .smooth = 1,
+     .natural_warp = BENCH_WARP_DISTANCE, .print_params = hetero_print, .build = hetero_build,
+     .integrand = hetero_integrand},
+    {.name = "hifreq",
+     .description = "high-frequency sigma_s from callbacks (about 50 periods on the ray), sky light",
+     .params = &hifreq_scene, .t0 = 0.0, .t1 = 10.0, .smooth = 1,
+     .natural_warp = BENCH_WARP_DISTANCE, .print_params = hifreq_print, .build = hifreq_build,
+     .integrand = hifreq_integrand, .ref_panel = 0.0625L},
+    {.name = "emission",
+     .description = "emission only: absorbing medium with a Gaussian emission profile, no Li",
+     .params = &emission_scene, .t0 = 0.0, .t1 = 10.0, .smooth = 1,
+     .natural_warp = BENCH_WARP_DISTANCE, .print_params = emission_print,
+     .build = emission_build, .integrand = emission_integrand, .closed_form = emission_closed},
+    {.name = "thick",
+     .description = "optically thick (sigma_t T = 50, 200, 1000), directional light",
+     .params = &thick_scene, .t0 = 0.0, .t1 = 10.0, .smooth = 1,
+     .natural_warp = BENCH_WARP_DISTANCE, .print_params = directional_print,
+     .build = directional_build, .integrand = directional_integrand,
+     .closed_form = directional_closed, .ref_panel = 0.005L},
+    {.name = "thin",
+     .description = "optically thin (sigma_t T ~ 1e-3), point light 0.3 from the ray",
+     .params = &thin_scene, .t0 = 0.0, .t1 = 10.0, .smooth = 1,
+     .natural_warp = BENCH_WARP_EQUIANGULAR, .light = point_light, .print_params = point_print,
+     .build = point_build, .integrand = point_integrand, .split_points = point_split},
 };
 
 #define BENCH_SCENE_COUNT ((int)(sizeof bench_scenes / sizeof bench_scenes[0]))
