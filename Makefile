@@ -15,16 +15,19 @@ all: test
 test:
 	@sh tests/run.sh
 
-$(BUILD)/bench: bench/bench.c bench/reference.h bench/scenes.h hrm.h
+$(BUILD)/bench: bench/bench.c bench/reference.h bench/scenes.h bench/svg.h hrm.h
 	@mkdir -p $(BUILD)
 	$(CC) -std=c99 -O2 $(WARN) -I. bench/bench.c -o $@ -lm
 
+# bench/out/ is the run's scratch output (ignored by git); bench/results/ is
+# the committed snapshot of its figures and summary that the README links to.
 bench: $(BUILD)/bench
-	@mkdir -p bench/out
-	./$(BUILD)/bench
+	./$(BUILD)/bench --out bench/out
+	@mkdir -p bench/results
+	cp bench/out/*.svg bench/out/summary.md bench/results/
 
 bench-quick: $(BUILD)/bench
-	./$(BUILD)/bench --quick
+	./$(BUILD)/bench --quick --out bench/out/quick
 
 $(BUILD)/example_ray: examples/ray.c hrm.h
 	@mkdir -p $(BUILD)

@@ -14,7 +14,8 @@
 #include <math.h>
 
 #define REF_GL_POINTS 20      /* nodes per panel */
-#define REF_PANEL 0.25L       /* coarse panel width; the fine one is half */
+#define REF_PANEL 0.25L       /* coarse panel width, the fine one half of it;
+                                 a scene may ask for narrower panels */
 #define REF_MAX_POINTS 16     /* ray ends plus interior split points */
 
 typedef void (*ref_integrand_fn)(const void *params, long double t0, long double s,
