@@ -230,9 +230,16 @@
    h_min, h_max and h0 are in units of u under a warp.
    HRM_WARP_DISTANCE     u = 1 - exp(-sigma_ref (t - t0)) (Munoz eq. 13,
                          reflected so that u grows with t). sigma_ref = 0:
-                         the mean sigma_t over channels at t0 (one medium
-                         evaluation); zero or denormal: no warp. Exact for any
-                         N in a grey homogeneous medium under constant Li.
+                         the mean sigma_t over channels at t0 (the smallest
+                         for an infinite ray; one medium evaluation); zero or
+                         denormal: no warp. Exact for any N in a grey
+                         homogeneous medium under constant Li. u resolves t
+                         while 1 - u >> epsilon: on a finite ray sigma_ref is
+                         lowered to ln(1/eps)/(2 (t1 - t0)) if it is above;
+                         an infinite ray drops the tail beyond ln(2/eps) mean
+                         free paths of sigma_ref (36.7 in double, 16.6 in
+                         float): give a sigma_ref no larger than the smallest
+                         sigma_t along it.
    HRM_WARP_EQUIANGULAR  u = atan((t - delta)/D) for a point light D from the
                          ray, projecting at delta (Munoz eq. 16, Kulla and
                          Fajardo 2012); hrm_equiangular_warp computes delta
@@ -673,9 +680,10 @@ static void hrm__map(hrm__ctx *c, hrm_real p, hrm_real *off, hrm_real *J)
     *J = j;
 }
 
-/* Mean sigma_t over the channels at t0: the distance warp's default
-   sigma_ref (Munoz 2014 s.5), one medium evaluation. */
-static hrm_real hrm__sigma_ref(hrm__ctx *c)
+/* sigma_t at t0, the mean over the channels (Munoz 2014 s.5), or for an
+   infinite ray the smallest, whose light reaches farthest: the default
+   sigma_ref of the distance warp. One medium evaluation. */
+static hrm_real hrm__sigma_ref(hrm__ctx *c, int smallest)
 {
     const hrm_medium *m = c->m;
     hrm_real v[HRM__CH], w[HRM__CH], sum = 0;
@@ -701,6 +709,10 @@ static hrm_real hrm__sigma_ref(hrm__ctx *c)
         c->stats.medium_evals += m->sigma_t || m->sigma_a || m->sigma_s;
     }
     for (i = 0; i < HRM__CH; ++i) sum += v[i];
+    if (smallest) {
+        for (i = 0, sum = v[0]; i < HRM__CH; ++i) sum = v[i] < sum ? v[i] : sum;
+        return sum;
+    }
     return sum / HRM__CH;
 }
 
@@ -722,14 +734,18 @@ static hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_warp *w)
         hrm_real s = w->sigma_ref;
         hrm_real tiny = HRM__IS_FLOAT ? HRM__R(FLT_MIN) : HRM__R(DBL_MIN);
         if (!(HRM__FINITE(s) && s >= 0)) return HRM_ERR_BAD_WARP;
-        if (s == 0) s = hrm__sigma_ref(c);
+        if (s == 0) s = hrm__sigma_ref(c, inf);
         if (!(s >= tiny)) { /* zero or denormal: no warp */
             c->warp = HRM_WARP_NONE;
             break;
         }
+        /* u resolves t only while 1 - u is well above epsilon: a finite ray
+           longer than ln(1/eps)/2 mean free paths of sigma_ref takes a
+           smaller sigma_ref, so that all of it is integrated (its far part
+           still holds the light of channels thinner than sigma_ref). */
+        if (!inf && s * T > -HRM_LOG(HRM__EPS) / 2) s = -HRM_LOG(HRM__EPS) / 2 / T;
         c->w_sigma = s;
-        c->pb = inf ? 1 : -HRM_EXPM1(-s * T);
-        if (c->pb > 1 - HRM__EPS / 2) c->pb = 1 - HRM__EPS / 2;
+        c->pb = inf ? 1 - HRM__EPS / 2 : -HRM_EXPM1(-s * T);
         break;
     }
     case HRM_WARP_EQUIANGULAR: {
@@ -1365,8 +1381,7 @@ static void hrm__ivp_adaptive(hrm__ctx *c, const hrm__tableau *tb, hrm_control c
     int cost = hrm__stage_cost(tb), have = 0, after_reject = 0, first = 1, n;
 
     hrm__ivp_init(c, y);
-    /* The first attempt, extrapolated to the whole range, is the pilot
-       that sets the scale. */
+    /* The first attempt is the pilot that sets the scale. */
     h = h0 > 0 ? h0 : P * HRM__R(0.5) * HRM_POW(c->rtol, 1 / (kk + 1));
     h = hrm__clamp(h, c->h_min, c->h_max);
     while (p != to) {
@@ -1386,10 +1401,13 @@ static void hrm__ivp_adaptive(hrm__ctx *c, const hrm__tableau *tb, hrm_control c
         if (hrm__rk_step(c, tb, &start, &end, p, q, y, ynew, err) == 0) have = 0;
         if (c->status != HRM_OK) return;
         if (first) {
-            hrm_real tot[HRM__NY];
-            for (n = 0; n < HRM__NY; ++n) tot[n] = (ynew[n] - y[n]) * (P / hs);
+            /* The first attempt's increment: a part of the total, not
+               extrapolated (a thin layer near t0 holds all of a thick
+               medium's light, and extrapolation would overstate it). */
+            hrm_real part[HRM__NY];
+            for (n = 0; n < HRM__NY; ++n) part[n] = ynew[n] - y[n];
             if (control != HRM_CONTROL_MUNOZ && control != HRM_CONTROL_GONTERMAN)
-                hrm__set_scale(c, tot);
+                hrm__set_scale(c, part);
             first = 0;
         }
         ratio = hrm__ratio(c, control, p, q, y, ynew, err);
