@@ -147,7 +147,8 @@
    HRM_GAUSS_KRONROD    22     15 per interval     G7/K15; gk_mode GLOBAL
                                                    (QUADPACK QAG: worst
                                                    interval first, <= 128
-                                                   intervals) or LOCAL (Munoz:
+                                                   intervals; <= 32 to start)
+                                                   or LOCAL (Munoz:
                                                    recursive split, samples of
                                                    a split interval discarded)
    HRM_BOGACKI_SHAMPINE 3(2)   3 per step          first same as last
@@ -230,16 +231,18 @@
    h_min, h_max and h0 are in units of u under a warp.
    HRM_WARP_DISTANCE     u = 1 - exp(-sigma_ref (t - t0)) (Munoz eq. 13,
                          reflected so that u grows with t). sigma_ref = 0:
-                         the mean sigma_t over channels at t0 (the smallest
-                         for an infinite ray; one medium evaluation); zero or
-                         denormal: no warp. Exact for any N in a grey
-                         homogeneous medium under constant Li. u resolves t
-                         while 1 - u >> epsilon: on a finite ray sigma_ref is
-                         lowered to ln(1/eps)/(2 (t1 - t0)) if it is above;
-                         an infinite ray drops the tail beyond ln(2/eps) mean
-                         free paths of sigma_ref (36.7 in double, 16.6 in
-                         float): give a sigma_ref no larger than the smallest
-                         sigma_t along it.
+                         the smallest sigma_t over the channels at t0 (one
+                         medium evaluation; Munoz takes the mean, which lets
+                         the warped integrand of thinner channels grow
+                         exponentially); zero or denormal: no warp. Exact for
+                         any N in a grey homogeneous medium under constant
+                         Li. u resolves t while 1 - u >> epsilon: the ray
+                         past ln(2/eps) mean free paths of sigma_ref (36.7 in
+                         double, 16.6 in float) is dropped, harmless where no
+                         channel is thinner than sigma_ref; a finite ray with
+                         a thinner channel at t0 lowers sigma_ref toward it
+                         (at least ln(1/eps)/(2 (t1 - t0))). Give an infinite
+                         ray a sigma_ref no larger than sigma_t along it.
    HRM_WARP_EQUIANGULAR  u = atan((t - delta)/D) for a point light D from the
                          ray, projecting at delta (Munoz eq. 16, Kulla and
                          Fajardo 2012); hrm_equiangular_warp computes delta
@@ -680,13 +683,15 @@ static void hrm__map(hrm__ctx *c, hrm_real p, hrm_real *off, hrm_real *J)
     *J = j;
 }
 
-/* sigma_t at t0, the mean over the channels (Munoz 2014 s.5), or for an
-   infinite ray the smallest, whose light reaches farthest: the default
-   sigma_ref of the distance warp. One medium evaluation. */
-static hrm_real hrm__sigma_ref(hrm__ctx *c, int smallest)
+/* The smallest sigma_t over the channels at t0: the default sigma_ref of
+   the distance warp. Munoz 2014 s.5 takes the mean; the smallest keeps the
+   warped integrand bounded in every channel (a channel thinner than
+   sigma_ref grows like exp((sigma_ref - sigma_t) t) in u) and is the same
+   for a grey medium. One medium evaluation unless homogeneous. */
+static hrm_real hrm__sigma_min(hrm__ctx *c)
 {
     const hrm_medium *m = c->m;
-    hrm_real v[HRM__CH], w[HRM__CH], sum = 0;
+    hrm_real v[HRM__CH], w[HRM__CH], sum;
     int i;
     if (c->homog) {
         memcpy(v, c->st, sizeof v);
@@ -708,12 +713,8 @@ static hrm_real hrm__sigma_ref(hrm__ctx *c, int smallest)
         }
         c->stats.medium_evals += m->sigma_t || m->sigma_a || m->sigma_s;
     }
-    for (i = 0; i < HRM__CH; ++i) sum += v[i];
-    if (smallest) {
-        for (i = 0, sum = v[0]; i < HRM__CH; ++i) sum = v[i] < sum ? v[i] : sum;
-        return sum;
-    }
-    return sum / HRM__CH;
+    for (i = 0, sum = v[0]; i < HRM__CH; ++i) sum = v[i] < sum ? v[i] : sum;
+    return sum;
 }
 
 /* The parameter range [pa, pb] of the warp, with its fallbacks. An
@@ -731,21 +732,26 @@ static hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_warp *w)
     case HRM_WARP_NONE:
         break;
     case HRM_WARP_DISTANCE: {
-        hrm_real s = w->sigma_ref;
+        hrm_real s = w->sigma_ref, thinnest = -1;
         hrm_real tiny = HRM__IS_FLOAT ? HRM__R(FLT_MIN) : HRM__R(DBL_MIN);
         if (!(HRM__FINITE(s) && s >= 0)) return HRM_ERR_BAD_WARP;
-        if (s == 0) s = hrm__sigma_ref(c, inf);
+        if (s == 0) s = thinnest = hrm__sigma_min(c);
         if (!(s >= tiny)) { /* zero or denormal: no warp */
             c->warp = HRM_WARP_NONE;
             break;
         }
-        /* u resolves t only while 1 - u is well above epsilon: a finite ray
-           longer than ln(1/eps)/2 mean free paths of sigma_ref takes a
-           smaller sigma_ref, so that all of it is integrated (its far part
-           still holds the light of channels thinner than sigma_ref). */
-        if (!inf && s * T > -HRM_LOG(HRM__EPS) / 2) s = -HRM_LOG(HRM__EPS) / 2 / T;
+        /* u resolves t only while 1 - u is well above epsilon. Past
+           ln(2/eps) mean free paths of sigma_ref the ray is dropped, which
+           is harmless where no channel is thinner than sigma_ref; otherwise
+           a finite ray lowers sigma_ref until all of it is integrated. */
+        if (!inf && s * T > -HRM_LOG(HRM__EPS) / 2) {
+            hrm_real cap = -HRM_LOG(HRM__EPS) / 2 / T;
+            if (thinnest < 0) thinnest = hrm__sigma_min(c);
+            if (thinnest < s) s = thinnest > cap ? thinnest : cap;
+        }
         c->w_sigma = s;
-        c->pb = inf ? 1 - HRM__EPS / 2 : -HRM_EXPM1(-s * T);
+        c->pb = inf ? 1 : -HRM_EXPM1(-s * T);
+        if (c->pb > 1 - HRM__EPS / 2) c->pb = 1 - HRM__EPS / 2;
         break;
     }
     case HRM_WARP_EQUIANGULAR: {
@@ -1418,8 +1424,9 @@ static void hrm__ivp_adaptive(hrm__ctx *c, const hrm__tableau *tb, hrm_control c
             c->rough_left--;
         }
         if (!accept && hs <= c->h_min) {
+            /* within the share of a rough step, h_min is no failure */
             accept = 1;
-            hrm__warn(c, HRM_WARN_H_MIN);
+            if (hrm__ratio(c, HRM__JUMP, p, q, y, ynew, err) > 1) hrm__warn(c, HRM_WARN_H_MIN);
         }
         if (control == HRM_CONTROL_MUNOZ) {
             /* Munoz 2014 eq. 12 with e_i the relative error. */
@@ -1538,7 +1545,8 @@ static void hrm__nested_simpson(hrm__ctx *c, int panels, hrm_real acc[HRM__NY])
             ratio = hrm__ratio(c, HRM_CONTROL_PI, cur.a.p, cur.b.p, acc, y1, err);
             split = ratio > 1 && !hrm__rough_ok(c, ratio, cur.parent, cur.a.p, cur.b.p, acc, y1, err);
             if (split && (cur.depth >= HRM__MAX_DEPTH || HRM_FABS(H) / 2 < c->h_min)) {
-                hrm__warn(c, cur.depth >= HRM__MAX_DEPTH ? HRM_WARN_STORAGE : HRM_WARN_H_MIN);
+                if (hrm__ratio(c, HRM__JUMP, cur.a.p, cur.b.p, acc, y1, err) > 1)
+                    hrm__warn(c, cur.depth >= HRM__MAX_DEPTH ? HRM_WARN_STORAGE : HRM_WARN_H_MIN);
                 split = 0;
             }
             if (split && c->stats.evals + 2 > c->max_evals) {
@@ -1731,7 +1739,8 @@ static void hrm__gk_local(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
             ratio = hrm__ratio(c, HRM_CONTROL_PI, a, b, acc, y1, ek);
             split = ratio > 1 && !hrm__rough_ok(c, ratio, parent, a, b, acc, y1, ek);
             if (split && (d >= HRM__MAX_DEPTH || HRM_FABS(b - a) / 2 < c->h_min)) {
-                hrm__warn(c, d >= HRM__MAX_DEPTH ? HRM_WARN_STORAGE : HRM_WARN_H_MIN);
+                if (hrm__ratio(c, HRM__JUMP, a, b, acc, y1, ek) > 1)
+                    hrm__warn(c, d >= HRM__MAX_DEPTH ? HRM_WARN_STORAGE : HRM_WARN_H_MIN);
                 split = 0;
             }
             if (split && c->stats.evals + reserve > c->max_evals) {
@@ -1923,6 +1932,9 @@ static hrm_status hrm__resolve(const hrm_options *in, hrm_options *o)
     if (o->method == HRM_METHOD_DEFAULT) o->method = d.method;
     if (o->steps < 0) return HRM_ERR_BAD_STEPS;
     if (o->steps == 0) o->steps = d.steps;
+    /* initial panels and intervals of the adaptive quadratures */
+    if (o->method == HRM_NESTED_SIMPSON && o->steps > HRM__NS_PANELS) o->steps = HRM__NS_PANELS;
+    if (o->method == HRM_GAUSS_KRONROD && o->steps > HRM__GK_INITIAL) o->steps = HRM__GK_INITIAL;
     if ((int)o->form < 0 || (int)o->form > (int)HRM_FORM_RTE) return HRM_ERR_BAD_OPTION;
     if (o->form == HRM_FORM_DEFAULT) o->form = HRM_FORM_OPTICAL_DEPTH;
     if ((int)o->control < 0 || (int)o->control > (int)HRM_CONTROL_GONTERMAN) return HRM_ERR_BAD_OPTION;

@@ -2142,6 +2142,10 @@ static void test_names(void)
     CHECK_INT(hrm_version(), 100, "version 0.1.0 as the top comment says");
 }
 
+/* Adaptive methods and warps, in their own files (static functions only). */
+#include "test_adaptive.h"
+#include "test_warp.h"
+
 int main(void)
 {
     RUN_GROUP(test_names);
@@ -2160,5 +2164,7 @@ int main(void)
     RUN_GROUP(test_thick);
     RUN_GROUP(test_rte_stiffness);
     RUN_GROUP(test_rte_closed_form_tr);
+    adaptive_tests();
+    warp_tests();
     return harness_summary();
 }
