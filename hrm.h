@@ -99,7 +99,8 @@
    HRM_ASSERT(x)       internal invariants only (never user input);
                        assert() by default.
    HRM_SQRT, HRM_EXP, HRM_EXPM1, HRM_LOG, HRM_LOG1P, HRM_POW, HRM_FABS,
-   HRM_TAN, HRM_ATAN   math functions; by default the libm function that
+   HRM_SIN, HRM_COS, HRM_ATAN2, HRM_HYPOT
+                       math functions; by default the libm function that
                        matches sizeof(HRM_REAL) (expf for float, exp for
                        double).
 
@@ -543,12 +544,6 @@ HRM_API int hrm_version(void);
 #endif
 #ifndef HRM_FABS
 #define HRM_FABS(x) HRM__MATH1(fabs, x)
-#endif
-#ifndef HRM_TAN
-#define HRM_TAN(x) HRM__MATH1(tan, x)
-#endif
-#ifndef HRM_ATAN
-#define HRM_ATAN(x) HRM__MATH1(atan, x)
 #endif
 #ifndef HRM_SIN
 #define HRM_SIN(x) HRM__MATH1(sin, x)
