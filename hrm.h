@@ -579,7 +579,7 @@ typedef struct hrm__pt {
     hrm_real p, off;
     hrm_real gs[HRM__CH];  /* sigma_t(s) * ds/dp */
     hrm_real gq[HRM__CH];  /* S(s) * ds/dp */
-    hrm_real tau[HRM__CH]; /* tau(t0, s), when the medium has a closed form */
+    hrm_real tr[HRM__CH];  /* Tr(t0, s), when the medium has a closed form */
 } hrm__pt;
 
 typedef struct hrm__ctx {
@@ -631,6 +631,37 @@ static void hrm__check(hrm__ctx *c, hrm_real *v, int kind)
             v[i] = 0;
         }
     }
+}
+
+/* The sigma callbacks at s, those that are wanted and present (absent ones
+   are zero; sigma_t defaults to sigma_a + sigma_s), validated. Returns
+   whether any was called (one medium evaluation). */
+static int hrm__coeffs(hrm__ctx *c, hrm_real s, int want_sa, int want_ss, int want_st,
+                       hrm_real sa[HRM__CH], hrm_real ss[HRM__CH], hrm_real st[HRM__CH])
+{
+    const hrm_medium *m = c->m;
+    int i, called = 0, derive_st = want_st && !m->sigma_t;
+    hrm__fill(sa, HRM__CH, 0);
+    hrm__fill(ss, HRM__CH, 0);
+    hrm__fill(st, HRM__CH, 0);
+    if (m->sigma_a && (want_sa || derive_st)) {
+        m->sigma_a(m->user, s, sa);
+        hrm__check(c, sa, 1);
+        called = 1;
+    }
+    if (m->sigma_s && (want_ss || derive_st)) {
+        m->sigma_s(m->user, s, ss);
+        hrm__check(c, ss, 1);
+        called = 1;
+    }
+    if (want_st && m->sigma_t) {
+        m->sigma_t(m->user, s, st);
+        hrm__check(c, st, 1);
+        called = 1;
+    } else if (want_st) {
+        for (i = 0; i < HRM__CH; ++i) st[i] = sa[i] + ss[i];
+    }
+    return called;
 }
 
 /* The change of variable p -> s, as the offset s - t0 (full precision for
@@ -685,31 +716,14 @@ static void hrm__map(hrm__ctx *c, hrm_real p, hrm_real *off, hrm_real *J)
    for a grey medium. One medium evaluation unless homogeneous. */
 static hrm_real hrm__sigma_min(hrm__ctx *c)
 {
-    const hrm_medium *m = c->m;
-    hrm_real v[HRM__CH], w[HRM__CH], sum;
+    hrm_real sa[HRM__CH], ss[HRM__CH], v[HRM__CH], least;
     int i;
-    if (c->homog) {
+    if (c->homog)
         memcpy(v, c->st, sizeof v);
-    } else {
-        hrm__fill(v, HRM__CH, 0);
-        if (m->sigma_t) {
-            m->sigma_t(m->user, c->t0, v);
-            hrm__check(c, v, 1);
-        } else {
-            if (m->sigma_a) {
-                m->sigma_a(m->user, c->t0, v);
-                hrm__check(c, v, 1);
-            }
-            if (m->sigma_s) {
-                m->sigma_s(m->user, c->t0, w);
-                hrm__check(c, w, 1);
-                for (i = 0; i < HRM__CH; ++i) v[i] += w[i];
-            }
-        }
-        c->stats.medium_evals += m->sigma_t || m->sigma_a || m->sigma_s;
-    }
-    for (i = 0, sum = v[0]; i < HRM__CH; ++i) sum = v[i] < sum ? v[i] : sum;
-    return sum;
+    else
+        c->stats.medium_evals += hrm__coeffs(c, c->t0, 0, 0, 1, sa, ss, v);
+    for (i = 0, least = v[0]; i < HRM__CH; ++i) least = v[i] < least ? v[i] : least;
+    return least;
 }
 
 /* The parameter range [pa, pb] of the warp, with its fallbacks. An
@@ -815,6 +829,13 @@ static hrm_real hrm__abscissa(const hrm__ctx *c, hrm_real off)
 
 /* Evaluate the medium and the source at parameter p: every callback at most
    once, absent terms never. */
+/* exp(-tau) at a node: the closed form evaluated with the node, else from
+   the tau the rule computed. */
+static hrm_real hrm__att(const hrm__ctx *c, const hrm__pt *pt, int i, hrm_real tau)
+{
+    return c->closed ? pt->tr[i] : HRM_EXP(-tau);
+}
+
 static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
 {
     const hrm_medium *m = c->m;
@@ -830,36 +851,13 @@ static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
         memcpy(ss, c->ss, sizeof ss);
         memcpy(st, c->st, sizeof st);
         if (c->closed)
-            for (i = 0; i < HRM__CH; ++i) pt->tau[i] = c->st[i] * pt->off;
+            for (i = 0; i < HRM__CH; ++i) pt->tr[i] = HRM_EXP(-c->st[i] * pt->off);
     } else {
-        int medium = 0;
-        int derive_st = c->need_st && !m->sigma_t;
-        hrm__fill(sa, HRM__CH, 0);
-        hrm__fill(ss, HRM__CH, 0);
-        hrm__fill(st, HRM__CH, 0);
-        if (m->sigma_a && ((c->use_le && !c->per_length) || derive_st)) {
-            m->sigma_a(m->user, s, sa);
-            hrm__check(c, sa, 1);
-            medium = 1;
-        }
-        if (m->sigma_s && (c->use_li || derive_st)) {
-            m->sigma_s(m->user, s, ss);
-            hrm__check(c, ss, 1);
-            medium = 1;
-        }
-        if (c->need_st) {
-            if (m->sigma_t) {
-                m->sigma_t(m->user, s, st);
-                hrm__check(c, st, 1);
-                medium = 1;
-            } else {
-                for (i = 0; i < HRM__CH; ++i) st[i] = sa[i] + ss[i];
-            }
-        }
+        int medium = hrm__coeffs(c, s, c->use_le && !c->per_length, c->use_li, c->need_st,
+                                 sa, ss, st);
         if (c->closed) {
-            m->transmittance(m->user, c->t0, s, v);
-            hrm__check(c, v, 2);
-            for (i = 0; i < HRM__CH; ++i) pt->tau[i] = -HRM_LOG(v[i]);
+            m->transmittance(m->user, c->t0, s, pt->tr);
+            hrm__check(c, pt->tr, 2);
             medium = 1;
         }
         c->stats.medium_evals += medium;
@@ -957,14 +955,12 @@ static void hrm__nodes(hrm__ctx *c, int N, int kind, hrm_real xi,
         }
         hrm__eval(c, p, &pt);
         for (i = 0; i < HRM__CH; ++i) {
-            if (c->closed) {
-                tau[i] = pt.tau[i];
-            } else {
+            if (!c->closed) {
                 hrm_real mean = k ? (prev_gs[i] + pt.gs[i]) / 2 : pt.gs[i];
                 tau[i] += mean * (p - prev_p);
                 prev_gs[i] = pt.gs[i];
             }
-            L[i] += w * HRM_EXP(-tau[i]) * pt.gq[i];
+            L[i] += w * hrm__att(c, &pt, i, tau[i]) * pt.gq[i];
         }
         prev_p = p;
         c->stats.steps++;
@@ -988,10 +984,7 @@ static void hrm__simpson(hrm__ctx *c, int N, hrm_real L[HRM__CH], hrm_real tau[H
     int k, i;
 
     hrm__eval(c, c->pa, &a);
-    for (i = 0; i < HRM__CH; ++i) {
-        tau[i] = c->closed ? a.tau[i] : 0;
-        ea[i] = HRM_EXP(-tau[i]) * a.gq[i];
-    }
+    for (i = 0; i < HRM__CH; ++i) ea[i] = hrm__att(c, &a, i, 0) * a.gq[i];
     for (k = 0; k < N; ++k) {
         hrm_real pl = c->pa + span * ((hrm_real)k / (hrm_real)N);
         hrm_real pr = k + 1 == N ? c->pb : c->pa + span * ((hrm_real)(k + 1) / (hrm_real)N);
@@ -999,19 +992,16 @@ static void hrm__simpson(hrm__ctx *c, int N, hrm_real L[HRM__CH], hrm_real tau[H
         hrm__eval(c, pl + H / 2, &mid);
         hrm__eval(c, pr, &b);
         for (i = 0; i < HRM__CH; ++i) {
-            hrm_real tm, tb, eb;
-            if (c->closed) {
-                tm = mid.tau[i];
-                tb = b.tau[i];
-            } else {
+            hrm_real tm = 0, tb = 0, eb;
+            if (!c->closed) {
                 tb = tau[i] + H / 6 * (a.gs[i] + 4 * mid.gs[i] + b.gs[i]);
                 tm = tau[i] + H / 24 * (5 * a.gs[i] + 8 * mid.gs[i] - b.gs[i]);
                 if (tb < tau[i]) tb = tau[i];
                 if (tm < tau[i]) tm = tau[i];
                 if (tm > tb) tm = tb;
             }
-            eb = HRM_EXP(-tb) * b.gq[i];
-            L[i] += H / 6 * (ea[i] + 4 * HRM_EXP(-tm) * mid.gq[i] + eb);
+            eb = hrm__att(c, &b, i, tb) * b.gq[i];
+            L[i] += H / 6 * (ea[i] + 4 * hrm__att(c, &mid, i, tm) * mid.gq[i] + eb);
             ea[i] = eb;
             tau[i] = tb;
         }
@@ -1069,7 +1059,7 @@ static void hrm__deriv(const hrm__ctx *c, const hrm__pt *pt, const hrm_real *y, 
             k[HRM__CH + i] = pt->gs[i] * y[HRM__CH + i] - pt->gq[i];
         } else {
             k[i] = pt->gs[i];
-            k[HRM__CH + i] = HRM_EXP(-(c->closed ? pt->tau[i] : y[i])) * pt->gq[i];
+            k[HRM__CH + i] = hrm__att(c, pt, i, y[i]) * pt->gq[i];
         }
     }
 }
@@ -1484,20 +1474,16 @@ static void hrm__ns_rule(const hrm__ctx *c, const hrm__pt *a, const hrm__pt *m,
     hrm_real H = b->p - a->p;
     int i;
     for (i = 0; i < HRM__CH; ++i) {
-        hrm_real ta = tau_a[i], tm, tb, fa, fm, fb;
-        if (c->closed) {
-            ta = a->tau[i];
-            tm = m->tau[i];
-            tb = b->tau[i];
-        } else {
+        hrm_real ta = tau_a[i], tm = ta, tb = ta, fa, fm, fb;
+        if (!c->closed) {
             tb = ta + H / 6 * (a->gs[i] + 4 * m->gs[i] + b->gs[i]);
             tm = ta + H / 24 * (5 * a->gs[i] + 8 * m->gs[i] - b->gs[i]);
             tb = tb < ta ? ta : tb;
             tm = hrm__clamp(tm, ta, tb);
         }
-        fa = HRM_EXP(-ta) * a->gq[i];
-        fm = HRM_EXP(-tm) * m->gq[i];
-        fb = HRM_EXP(-tb) * b->gq[i];
+        fa = hrm__att(c, a, i, ta) * a->gq[i];
+        fm = hrm__att(c, m, i, tm) * m->gq[i];
+        fb = hrm__att(c, b, i, tb) * b->gq[i];
         val[i] = c->closed ? 0 : tb - ta;
         err[i] = c->closed ? 0 : val[i] - H / 4 * (a->gs[i] + 2 * m->gs[i] + b->gs[i]);
         val[HRM__CH + i] = H / 6 * (fa + 4 * fm + fb);
@@ -1570,8 +1556,6 @@ static void hrm__nested_simpson(hrm__ctx *c, int panels, hrm_real acc[HRM__NY])
             if (c->status != HRM_OK) return;
         }
     }
-    if (c->closed)
-        for (i = 0; i < HRM__CH; ++i) acc[i] = cur.b.tau[i];
 }
 
 /* Gauss-Kronrod G7/K15 on [-1, 1]: the positive K15 nodes, their weights,
@@ -1645,15 +1629,12 @@ static void hrm__gk15(hrm__ctx *c, hrm_real a, hrm_real b, const hrm_real *tau_a
             if (is_tau) {
                 f[j] = pt[j].gs[ch];
             } else {
-                hrm_real t;
-                if (c->closed) {
-                    t = pt[j].tau[ch];
-                } else {
-                    t = 0;
+                hrm_real t = 0;
+                if (!c->closed) {
                     for (l = 0; l < 15; ++l) t += hrm__gk_tau[j * 15 + l] * pt[l].gs[ch];
                     t = tau_a[ch] + (t * hl > 0 ? t * hl : 0);
                 }
-                f[j] = HRM_EXP(-t) * pt[j].gq[ch];
+                f[j] = hrm__att(c, &pt[j], ch, t) * pt[j].gq[ch];
             }
             hrm__gk_node(j, &x, &wk, &wg);
             rk += wk * f[j];
