@@ -369,6 +369,20 @@ typedef enum hrm_gk_mode {
     HRM_GK_LOCAL             /* Munoz 2014: recursive local split */
 } hrm_gk_mode;
 
+/* How tau (hence Tr) is integrated where the medium has no closed form.
+   Both integrate sigma_t in t over the actual distances between abscissae,
+   so a constant sigma_t given through callbacks is exact under any warp. */
+typedef enum hrm_tau_mode {
+    HRM_TAU_DEFAULT = 0,     /* HRM_TAU_DECOUPLED */
+    HRM_TAU_DECOUPLED,       /* medium-only samples placed in t by their own
+                                accuracy control (options.tau_tol), apart
+                                from the source samples (Kulla and Fajardo
+                                2012; Munoz 2014 s.6) */
+    HRM_TAU_COUPLED          /* from the sigma_t samples at the source
+                                abscissae, at the rule's order: no extra
+                                medium evaluation, as the papers do */
+} hrm_tau_mode;
+
 /* Importance sampling as a change of variable t = t(u) (Munoz 2014 s.5):
    every method integrates over u, so fixed-step methods and Monte Carlo
    place their samples uniformly in u and adaptive methods start from it. */
@@ -443,6 +457,13 @@ typedef struct hrm_options {
     hrm_control control;/* Runge-Kutta step control. 0: HRM_CONTROL_PI */
     hrm_gk_mode gk_mode;/* Gauss-Kronrod. 0: HRM_GK_GLOBAL */
     hrm_warp warp;      /* importance sampling. 0: none */
+    hrm_tau_mode tau_mode; /* 0: HRM_TAU_DECOUPLED */
+    hrm_real tau_tol;   /* decoupled tau: the error of each optical-depth
+                           increment relative to itself, weighted by Tr
+                           where it occurs, so that L's relative error from
+                           tau stays below it. 0: rtol/8 for the adaptive
+                           methods, 1e-10 (1e-5 with float) for the
+                           fixed-step ones */
 } hrm_options;
 
 typedef struct hrm_stats {
