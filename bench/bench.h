@@ -5,7 +5,7 @@
 
      measure.c  running solves: methods, warps, references, the sweeps
                 (rows), the count check, timing, and the measurements of
-                the summary sections (equiangular, overhead)
+                the summary sections (equiangular, transmittance, overhead)
      report.c   tables on stdout, summary.md, timing.md, bench.csv
      figures.c  the SVG figures (svg.c draws them)
      main.c     the command line: options, the order of the work, exit status
@@ -33,9 +33,10 @@
 #define BENCH_MAX_SCENES 16
 #define BENCH_TAIL 4              /* the finest points, for the asymptotic order */
 #define BENCH_TARGETS 3           /* the summary's error targets: 1e-2, 1e-4, 1e-6 */
-#define BENCH_SECTION_PARAMS 3    /* N of the equiangular section */
+#define BENCH_SECTION_PARAMS 3    /* N or rtol values of the summary sections */
 #define BENCH_OVERHEAD_BATCHES 15 /* the overhead table: the fastest of these */
 #define BENCH_OVERHEAD_EVALS 1024 /* ... at about this many evaluations */
+#define BENCH_TRANS_COLS 5        /* the transmittance table's columns (a)..(e) */
 
 #define COUNT_OF(a) ((int)(sizeof(a) / sizeof((a)[0])))
 
@@ -48,8 +49,9 @@ enum { /* exit status */
 };
 
 extern const double bench_targets[BENCH_TARGETS];
-/* N of the equiangular section */
+/* N and rtol of the summary sections (equiangular, transmittance) */
 extern const double bench_section_steps[BENCH_SECTION_PARAMS];
+extern const double bench_section_tols[BENCH_SECTION_PARAMS];
 extern const char *const bench_warp_names[BENCH_WARP_COUNT];
 extern const char *const bench_medium_names[BENCH_MEDIUM_COUNT];
 
@@ -138,6 +140,25 @@ typedef struct bench_equi {
     double ratio[BENCH_MAX_METHODS][BENCH_SECTION_PARAMS]; /* NaN: n/a */
 } bench_equi;
 
+/* The transmittance table: one row per method and N or rtol, equiangular
+   warp; columns (a) point as constants, (b) point as sigma callbacks,
+   (c) smoke with HRM_TAU_DECOUPLED, (d) HRM_TAU_COUPLED, (e) smoke with its
+   exact transmittance callback. */
+typedef struct bench_trans_row {
+    int method;
+    double param;
+    double err[BENCH_TRANS_COLS];      /* NaN: not run (scene not selected) */
+    hrm_status status[BENCH_TRANS_COLS];
+    int ran[BENCH_TRANS_COLS];
+    hrm_stats stats_c;                 /* column (c)'s */
+} bench_trans_row;
+
+typedef struct bench_trans {
+    int point, smoke;                  /* scene indices; -1: not selected */
+    int n;
+    bench_trans_row rows[BENCH_MAX_METHODS * BENCH_SECTION_PARAMS];
+} bench_trans;
+
 /* Library overhead against a hand-written loop. */
 typedef struct bench_overhead_row {
     int method;
@@ -184,6 +205,7 @@ typedef struct bench_state {
     bench_progress progress;
 
     bench_equi equi;
+    bench_trans trans;
     bench_overhead overhead[2]; /* directional (constants), hetero (callbacks) */
 } bench_state;
 
@@ -224,6 +246,7 @@ void bench_progress_show(bench_state *st, const char *what);
 void bench_run_scene(bench_state *st, int si);
 /* The summary sections' measurements, after the sweeps. */
 void bench_measure_equiangular(bench_state *st);
+void bench_measure_transmittance(bench_state *st);
 void bench_measure_overhead(bench_state *st); /* only when timed */
 
 /* ------------------------------------------------------------------------ */

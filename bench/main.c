@@ -92,7 +92,7 @@ static void bench_list(const bench_state *st)
     }
     printf("warps:\n  none\n  natural      the scene's own (above)\n"
            "  distance     sigma_ref 0: hrm's choice from sigma_t at t0\n"
-           "  equiangular  toward the scene's point light (point, occluder, thin)\n");
+           "  equiangular  toward the scene's point light (point, occluder, thin, smoke)\n");
     printf("media:\n  const        homogeneous constants (HRM_MEDIUM_HOMOGENEOUS); homogeneous "
            "scenes only\n  sigma        sigma_a/sigma_s callbacks (homogeneous scenes: the same "
            "constants)\n");
@@ -297,8 +297,9 @@ static int bench_run(bench_state *st)
     }
 
     if (st->progress.tty)
-        fprintf(stderr, "\r\033[K[    ] equiangular ratios, library overhead");
+        fprintf(stderr, "\r\033[K[    ] equiangular ratios, transmittance, library overhead");
     bench_measure_equiangular(st);
+    bench_measure_transmittance(st);
     bench_measure_overhead(st);
     if (!st->progress.tty)
         fprintf(stderr, "bench: summary sections done (%.1f s)\n", bench_seconds() - start);

@@ -11,8 +11,9 @@
    checked against the callbacks hrm made; every row is timed (median over
    repeated solves) unless --no-timing.
 
-   Then the measurements behind two summary sections: the equiangular gain
-   on the point scene and the library overhead against a hand-written
+   Then the measurements behind three summary sections: the equiangular gain
+   on the point scene, the transmittance table (point and smoke scenes, five
+   ways of getting tau) and the library overhead against a hand-written
    ray-marching loop. Everything lands in bench_state; this
    file prints nothing but the progress line and check failures (stderr).
 
@@ -32,6 +33,7 @@ const char *const bench_warp_names[BENCH_WARP_COUNT] = {"none", "distance", "equ
 const char *const bench_medium_names[BENCH_MEDIUM_COUNT] = {"const", "sigma"};
 
 const double bench_section_steps[BENCH_SECTION_PARAMS] = {8, 32, 128};
+const double bench_section_tols[BENCH_SECTION_PARAMS] = {1e-2, 1e-4, 1e-6};
 
 /* ------------------------------------------------------------------------ */
 /* Small helpers                                                            */
@@ -123,7 +125,7 @@ void bench_state_init(bench_state *st)
     }
     st->timings = 5;
     st->batch_seconds = 1e-3;
-    st->equi.scene = -1;
+    st->equi.scene = st->trans.point = st->trans.smoke = -1;
     st->overhead[0].scene = st->overhead[1].scene = -1;
     ref_rule_init(&st->rule);
 }
@@ -669,6 +671,55 @@ void bench_measure_equiangular(bench_state *st)
             }
             eq->method[eq->n++] = mi;
         }
+}
+
+/* ------------------------------------------------------------------------ */
+/* Transmittance: five ways of getting tau, equiangular warp                */
+/* ------------------------------------------------------------------------ */
+
+void bench_measure_transmittance(bench_state *st)
+{
+    bench_trans *tr = &st->trans;
+    int point = bench_find_scene("point"), smoke = bench_find_scene("smoke"), mi, k, col;
+    hrm_medium m[BENCH_TRANS_COLS];
+    bench_calls calls[BENCH_TRANS_COLS];
+    static const hrm_tau_mode modes[BENCH_TRANS_COLS] = {
+        HRM_TAU_DEFAULT, HRM_TAU_DEFAULT, HRM_TAU_DECOUPLED, HRM_TAU_COUPLED, HRM_TAU_DEFAULT};
+    static const char *const labels[BENCH_TRANS_COLS] = {
+        "const", "sigma", "sigma, tau decoupled", "sigma, tau coupled", "sigma, exact Tr"};
+    int scene_of[BENCH_TRANS_COLS];
+
+    tr->point = point >= 0 && bench_scene_selected(&st->cfg, point) ? point : -1;
+    tr->smoke = smoke >= 0 && bench_scene_selected(&st->cfg, smoke) ? smoke : -1;
+    tr->n = 0;
+    if (tr->point < 0 && tr->smoke < 0) return;
+    for (col = 0; col < BENCH_TRANS_COLS; ++col) {
+        scene_of[col] = col < 2 ? tr->point : tr->smoke;
+        if (scene_of[col] < 0) continue;
+        bench_medium_build(&bench_scenes[scene_of[col]],
+                           col == 0 ? BENCH_MEDIUM_CONST : BENCH_MEDIUM_SIGMA, &m[col], &calls[col]);
+        if (col == 4) m[col].transmittance = bench_scenes[scene_of[col]].transmittance;
+    }
+    for (mi = 0; mi < st->nmethods; ++mi) {
+        const bench_method *me = &st->methods[mi];
+        if (!bench_method_in_sections(st, mi)) continue;
+        for (k = 0; k < BENCH_SECTION_PARAMS; ++k) {
+            bench_trans_row *r = &tr->rows[tr->n++];
+            r->method = mi;
+            r->param = bench_is_swept_over_n(me) ? bench_section_steps[k] : bench_section_tols[k];
+            for (col = 0; col < BENCH_TRANS_COLS; ++col) {
+                bench_row row;
+                r->ran[col] = scene_of[col] >= 0;
+                r->err[col] = (double)NAN;
+                if (!r->ran[col]) continue;
+                r->err[col] = bench_section_solve(st, scene_of[col], me, BENCH_WARP_EQUIANGULAR,
+                                                  r->param, &m[col], &calls[col], modes[col],
+                                                  labels[col], &row);
+                r->status[col] = row.status;
+                if (col == 2) r->stats_c = row.stats;
+            }
+        }
+    }
 }
 
 /* ------------------------------------------------------------------------ */

@@ -680,6 +680,256 @@ static void emission_print(FILE *out, const void *params)
 }
 
 /* ------------------------------------------------------------------------ */
+/* smoke: a spotlight in smoke. Heterogeneous medium from callbacks whose   */
+/* coefficients vary by up to +-50% along the ray,                          */
+/*   sigma_a(x) = a0 m_a(x),  sigma_s(x) = s0 m_s(x),                       */
+/*   m(x) = 1 + b1 sin(w1 x + p1) + b2 sin(w2 x + p2),  |b1| + |b2| = 0.5,  */
+/* lit by an isotropic point light of intensity I at (delta, D, 0). The     */
+/* smoke is stratified (sigma depends on x alone, everywhere in space), so  */
+/* the optical depth of any segment from x = a to x = b, of length len, is  */
+/* len times the mean of sigma_t over [a, b] in x, in closed form:          */
+/*   mean of sin(w x + p) over [a, b] = sin(w c + p) sinc(w h / 2),         */
+/*   c = (a + b) / 2, h = b - a  (no cancellation for short segments).      */
+/* Hence, exactly:                                                          */
+/*   eye ray    tau(ta, tb) = (tb - ta) mean[ta, tb] sigma_t,               */
+/*   light      Li(s) = p I exp(-r mean[s, delta] sigma_t) / r^2,           */
+/*              r = sqrt((s - delta)^2 + D^2) (the segment to the light),   */
+/* in double for hrm and, separately, in long double for the reference.     */
+/* ------------------------------------------------------------------------ */
+
+#define SMOKE_T0 0.0
+#define SMOKE_T1 10.0
+
+typedef struct smoke_params {
+    double sigma_a[3], sigma_s[3];  /* the means a0 and s0 */
+    double ba[2], wa[2], pa[2];     /* m_a: amplitudes, frequencies, phases */
+    double bs[2], ws[2], ps[2];     /* m_s */
+    double I[3];                    /* radiant intensity */
+    double delta, D;
+} smoke_params;
+
+static const smoke_params smoke_scene = {
+    {0.04, 0.05, 0.06}, {0.25, 0.30, 0.35},
+    {0.30, 0.20}, {1.7, 3.1}, {0.4, 2.0},
+    {0.30, 0.20}, {1.3, 2.9}, {1.1, 0.3},
+    {10.0, 8.0, 6.0}, 5.0, 0.4};
+
+static double smoke_sinc(double x)
+{
+    return x == 0 ? 1 : sin(x) / x;
+}
+
+static long double smoke_sincl(long double x)
+{
+    return x == 0 ? 1 : sinl(x) / x;
+}
+
+/* The mean of m over [a, b] (b = a: m(a)); double, for hrm. */
+static double smoke_mean(const double b[2], const double w[2], const double p[2], double a,
+                         double bb)
+{
+    double c = 0.5 * (a + bb), h = bb - a;
+    return 1 + b[0] * sin(w[0] * c + p[0]) * smoke_sinc(0.5 * w[0] * h) +
+           b[1] * sin(w[1] * c + p[1]) * smoke_sinc(0.5 * w[1] * h);
+}
+
+/* The same in long double, for the reference. */
+static long double smoke_meanl(const double b[2], const double w[2], const double p[2],
+                               long double a, long double bb)
+{
+    long double c = (a + bb) / 2, h = bb - a;
+    return 1 + LD(b[0]) * sinl(LD(w[0]) * c + LD(p[0])) * smoke_sincl(LD(w[0]) * h / 2) +
+           LD(b[1]) * sinl(LD(w[1]) * c + LD(p[1])) * smoke_sincl(LD(w[1]) * h / 2);
+}
+
+static long double smoke_modl(const double b[2], const double w[2], const double p[2],
+                              long double x)
+{
+    return 1 + LD(b[0]) * sinl(LD(w[0]) * x + LD(p[0])) + LD(b[1]) * sinl(LD(w[1]) * x + LD(p[1]));
+}
+
+/* Mean sigma_t over [a, b] in x, per channel. */
+static void smoke_mean_st(const smoke_params *p, double a, double b, double out[3])
+{
+    double ma = smoke_mean(p->ba, p->wa, p->pa, a, b), ms = smoke_mean(p->bs, p->ws, p->ps, a, b);
+    int c;
+    for (c = 0; c < 3; ++c) out[c] = p->sigma_a[c] * ma + p->sigma_s[c] * ms;
+}
+
+static void smoke_mean_stl(const smoke_params *p, long double a, long double b,
+                           long double out[3])
+{
+    long double ma = smoke_meanl(p->ba, p->wa, p->pa, a, b);
+    long double ms = smoke_meanl(p->bs, p->ws, p->ps, a, b);
+    int c;
+    for (c = 0; c < 3; ++c) out[c] = LD(p->sigma_a[c]) * ma + LD(p->sigma_s[c]) * ms;
+}
+
+static void smoke_sigma_a(void *user, hrm_real t, hrm_real out[HRM_CHANNELS])
+{
+    const smoke_params *p = BENCH_PARAMS(smoke_params, user);
+    double m = smoke_mean(p->ba, p->wa, p->pa, (double)t, (double)t);
+    int c;
+    bench_count(user, BENCH_CB_SIGMA_A, t);
+    for (c = 0; c < 3; ++c) out[c] = (hrm_real)(p->sigma_a[c] * m);
+}
+
+static void smoke_sigma_s(void *user, hrm_real t, hrm_real out[HRM_CHANNELS])
+{
+    const smoke_params *p = BENCH_PARAMS(smoke_params, user);
+    double m = smoke_mean(p->bs, p->ws, p->ps, (double)t, (double)t);
+    int c;
+    bench_count(user, BENCH_CB_SIGMA_S, t);
+    for (c = 0; c < 3; ++c) out[c] = (hrm_real)(p->sigma_s[c] * m);
+}
+
+static void smoke_li(void *user, hrm_real t, hrm_real out[HRM_CHANNELS])
+{
+    const smoke_params *p = BENCH_PARAMS(smoke_params, user);
+    double s = (double)t, x = s - p->delta, r2 = x * x + p->D * p->D, r = sqrt(r2), st[3];
+    int c;
+    bench_count(user, BENCH_CB_LI, t);
+    smoke_mean_st(p, s, p->delta, st);
+    for (c = 0; c < 3; ++c) out[c] = (hrm_real)(BENCH_PHASE * p->I[c] * exp(-r * st[c]) / r2);
+}
+
+/* The exact eye-ray transmittance, for hrm's transmittance callback. */
+static void smoke_tr(void *user, hrm_real ta, hrm_real tb, hrm_real out[HRM_CHANNELS])
+{
+    const smoke_params *p = BENCH_PARAMS(smoke_params, user);
+    double st[3];
+    int c;
+    bench_count(user, BENCH_CB_TR, tb);
+    smoke_mean_st(p, (double)ta, (double)tb, st);
+    for (c = 0; c < 3; ++c) out[c] = (hrm_real)exp(-((double)tb - (double)ta) * st[c]);
+}
+
+static void smoke_build(const void *params, hrm_medium *m)
+{
+    (void)params;
+    m->sigma_a = smoke_sigma_a;
+    m->sigma_s = smoke_sigma_s;
+    m->Li = smoke_li;
+}
+
+static void smoke_integrand(const void *params, long double t0, long double s,
+                            long double out[HRM_CHANNELS])
+{
+    const smoke_params *p = (const smoke_params *)params;
+    long double x = s - LD(p->delta), r2 = x * x + LD(p->D) * LD(p->D), r = sqrtl(r2);
+    long double eye[3], light[3], ms = smoke_modl(p->bs, p->ws, p->ps, s);
+    int c;
+    smoke_mean_stl(p, t0, s, eye);
+    smoke_mean_stl(p, s, LD(p->delta), light);
+    for (c = 0; c < 3; ++c) {
+        long double li = BENCH_PHASE_L * LD(p->I[c]) * expl(-r * light[c]) / r2;
+        out[c] = expl(-(s - t0) * eye[c]) * LD(p->sigma_s[c]) * ms * li;
+    }
+}
+
+static int smoke_split(const void *params, long double out[], int max)
+{
+    if (max < 1) return 0;
+    out[0] = LD(((const smoke_params *)params)->delta);
+    return 1;
+}
+
+static int smoke_light(const void *params, double pos[3])
+{
+    const smoke_params *p = (const smoke_params *)params;
+    pos[0] = p->delta;
+    pos[1] = p->D;
+    pos[2] = 0;
+    return 1;
+}
+
+/* A check of the closed forms: sigma_t integrated by Gauss-Legendre along a
+   segment from x = a to the point (b, y, 0) (length len), in long double. */
+typedef struct smoke_segment {
+    const smoke_params *p;
+    long double a, b, len;
+} smoke_segment;
+
+static void smoke_segment_st(const void *params, long double t0, long double l,
+                             long double out[HRM_CHANNELS])
+{
+    const smoke_segment *g = (const smoke_segment *)params;
+    long double x = g->a + (g->b - g->a) * l / g->len;
+    long double ma = smoke_modl(g->p->ba, g->p->wa, g->p->pa, x);
+    long double ms = smoke_modl(g->p->bs, g->p->ws, g->p->ps, x);
+    int c;
+    (void)t0;
+    for (c = 0; c < 3; ++c) out[c] = LD(g->p->sigma_a[c]) * ma + LD(g->p->sigma_s[c]) * ms;
+}
+
+/* The largest relative difference between the closed-form optical depth and
+   a 20-point Gauss-Legendre quadrature of sigma_t, on the eye ray and on
+   the light paths from 11 points of the ray. */
+static long double smoke_check_tau(const smoke_params *p)
+{
+    ref_rule rule;
+    long double worst = 0, quad[3], closed[3], pts[2], mean[3];
+    int k, c;
+    ref_rule_init(&rule);
+    for (k = -1; k <= 10; ++k) {
+        smoke_segment g;
+        long double d;
+        g.p = p;
+        if (k < 0) { /* the eye ray */
+            g.a = LD(SMOKE_T0);
+            g.b = LD(SMOKE_T1);
+            g.len = g.b - g.a;
+        } else { /* from x(s) to the light */
+            long double s = LD(SMOKE_T0) + (LD(SMOKE_T1) - LD(SMOKE_T0)) * k / 10;
+            g.a = s;
+            g.b = LD(p->delta);
+            g.len = sqrtl((s - g.b) * (s - g.b) + LD(p->D) * LD(p->D));
+        }
+        pts[0] = 0;
+        pts[1] = g.len;
+        ref_integrate(&rule, smoke_segment_st, &g, pts, 2, 0.125L, quad);
+        smoke_mean_stl(p, g.a, g.b, mean);
+        for (c = 0; c < 3; ++c) closed[c] = g.len * mean[c];
+        d = ref_rel_diff(quad, closed);
+        if (!(d <= worst)) worst = d;
+    }
+    return worst;
+}
+
+static void smoke_print(FILE *out, const void *params)
+{
+    const smoke_params *p = (const smoke_params *)params;
+    double lo = HUGE_VAL, hi = 0;
+    int k, c;
+    for (k = 0; k <= 10000; ++k) { /* sigma_t / its mean, sampled */
+        double x = SMOKE_T0 + (SMOKE_T1 - SMOKE_T0) * k / 10000.0;
+        double ma = smoke_mean(p->ba, p->wa, p->pa, x, x), ms = smoke_mean(p->bs, p->ws, p->ps, x, x);
+        for (c = 0; c < 3; ++c) {
+            double q = (p->sigma_a[c] * ma + p->sigma_s[c] * ms) / (p->sigma_a[c] + p->sigma_s[c]);
+            if (q < lo) lo = q;
+            if (q > hi) hi = q;
+        }
+    }
+    fprintf(out, "  callbacks only: sigma_a(x) = a0 m_a(x), sigma_s(x) = s0 m_s(x), "
+                 "m(x) = 1 + b1 sin(w1 x + p1) + b2 sin(w2 x + p2)\n    ");
+    bench_print_vec(out, "a0", p->sigma_a);
+    fprintf(out, ", m_a: b = (%g, %g), w = (%g, %g), p = (%g, %g)\n    ", p->ba[0], p->ba[1],
+            p->wa[0], p->wa[1], p->pa[0], p->pa[1]);
+    bench_print_vec(out, "s0", p->sigma_s);
+    fprintf(out, ", m_s: b = (%g, %g), w = (%g, %g), p = (%g, %g)\n", p->bs[0], p->bs[1],
+            p->ws[0], p->ws[1], p->ps[0], p->ps[1]);
+    fprintf(out, "    sigma_t on the ray: %.2f..%.2f times its mean (a0 + s0)\n", lo, hi);
+    fprintf(out, "  Li(s) = p I exp(-tau_light) / r^2, r = sqrt((s - delta)^2 + D^2), p = 1/(4 pi), ");
+    bench_print_vec(out, "I", p->I);
+    fprintf(out, ", delta = %g, D = %g\n", p->delta, p->D);
+    fprintf(out, "  the smoke is stratified (sigma depends on x only), so tau of a segment from x = a\n"
+                 "  to x = b is its length times the mean of sigma_t over [a, b], in closed form\n"
+                 "  (sin(w c + p) sinc(w (b - a) / 2)): eye ray and light path exact; it agrees with\n"
+                 "  %d-point Gauss-Legendre quadrature of sigma_t (eye ray, 11 light paths) to %.1Le\n",
+            REF_GL_POINTS, smoke_check_tau(p));
+}
+
+/* ------------------------------------------------------------------------ */
 /* The scene table: a new scene is one more row.                            */
 /* ------------------------------------------------------------------------ */
 
@@ -727,6 +977,12 @@ const bench_scene bench_scenes[] = {
      .params = &thin_scene, .t0 = 0.0, .t1 = 10.0, .smooth = 1,
      .natural_warp = BENCH_WARP_EQUIANGULAR, .light = point_light, .print_params = point_print,
      .build = point_build, .integrand = point_integrand, .split_points = point_split},
+    {.name = "smoke",
+     .description = "spotlight in smoke: sigma_a, sigma_s from callbacks varying +-50% along the ray, point light 0.4 from it",
+     .params = &smoke_scene, .t0 = SMOKE_T0, .t1 = SMOKE_T1, .smooth = 1,
+     .natural_warp = BENCH_WARP_EQUIANGULAR, .light = smoke_light, .print_params = smoke_print,
+     .build = smoke_build, .transmittance = smoke_tr, .integrand = smoke_integrand,
+     .split_points = smoke_split},
 };
 
 const int bench_scene_count = (int)(sizeof bench_scenes / sizeof bench_scenes[0]);

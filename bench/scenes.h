@@ -6,7 +6,8 @@
    form, for the reference (reference.h). The two share only the parameter
    values. The first three are the scenes of Munoz 2014 Fig. 4; then a
    smooth and a high-frequency heterogeneous medium, emission alone, an
-   optically thick and an optically thin medium.
+   optically thick and an optically thin medium, and a spotlight in smoke
+   (heterogeneous medium, point light, closed-form optical depths).
 
    Each scene also names its natural warp (importance sampling, Munoz 2014
    s.5): distance for directional light and heterogeneous media, equiangular
@@ -95,6 +96,9 @@ typedef struct bench_scene {
     /* Fills all of the medium but user. A homogeneous scene sets
        HRM_MEDIUM_HOMOGENEOUS; bench_medium_as_sigma turns it into callbacks. */
     void (*build)(const void *params, hrm_medium *medium);
+    /* The exact eye-ray transmittance Tr(ta, tb) in closed form, for hrm's
+       transmittance callback (NULL: none written). */
+    hrm_transmittance_fn transmittance;
     /* The reference: Tr(t0, s) S(s) in long double, the points in (t0, t1)
        where it is not smooth (NULL: none), and a closed form (NULL: none). */
     ref_integrand_fn integrand;
