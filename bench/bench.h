@@ -36,6 +36,7 @@
 #define BENCH_SECTION_PARAMS 3    /* N or rtol values of the summary sections */
 #define BENCH_OVERHEAD_BATCHES 15 /* the overhead table: the fastest of these */
 #define BENCH_OVERHEAD_EVALS 1024 /* ... at about this many evaluations */
+#define BENCH_BUSY_NS 500.0       /* the dear Li of the overhead table, ns */
 #define BENCH_TRANS_COLS 5        /* the transmittance table's columns (a)..(e) */
 
 #define COUNT_OF(a) ((int)(sizeof(a) / sizeof((a)[0])))
@@ -159,19 +160,20 @@ typedef struct bench_trans {
     bench_trans_row rows[BENCH_MAX_METHODS * BENCH_SECTION_PARAMS];
 } bench_trans;
 
-/* Library overhead against a hand-written loop. */
+/* Library overhead against a hand-written loop, at two Li costs:
+   [0] the scene's cheap callbacks, [1] Li made about BENCH_BUSY_NS dearer. */
 typedef struct bench_overhead_row {
     int method;
     double param;
     long evals;
-    double ns_per_ray;
+    double ns_per_ray[2];
 } bench_overhead_row;
 
 typedef struct bench_overhead {
     int scene;                         /* -1: not measured */
-    double callbacks_ns;               /* per evaluation, the callbacks alone */
-    double loop_ns;                    /* per evaluation, the hand-written loop */
-    double loop_error;                 /* the loop's rel_error */
+    double callbacks_ns[2];            /* per evaluation, the callbacks alone */
+    double loop_ns[2];                 /* per evaluation, the hand-written loop */
+    double loop_error;                 /* the loop's rel_error (cheap Li) */
     int n;
     bench_overhead_row rows[BENCH_MAX_METHODS];
 } bench_overhead;
@@ -198,6 +200,7 @@ typedef struct bench_state {
 
     int timings;             /* timed batches per row; the median is reported */
     double batch_seconds;    /* a timed batch lasts at least this long */
+    long busy_iters;         /* bench_busy iterations that take BENCH_BUSY_NS */
 
     long solves, count_mismatches;
     int errors;              /* rows in which a solve returned an error status */

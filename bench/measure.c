@@ -14,7 +14,7 @@
    Then the measurements behind three summary sections: the equiangular gain
    on the point scene, the transmittance table (point and smoke scenes, five
    ways of getting tau) and the library overhead against a hand-written
-   ray-marching loop. Everything lands in bench_state; this
+   ray-marching loop at two Li costs. Everything lands in bench_state; this
    file prints nothing but the progress line and check failures (stderr).
 
    The whole of hrm's implementation is compiled here. */
@@ -786,6 +786,29 @@ static double bench_floor_batch(void *ctx, long reps)
     return sum;
 }
 
+typedef struct bench_busy_ctx {
+    long iters;
+} bench_busy_ctx;
+
+static double bench_busy_batch(void *ctx, long reps)
+{
+    const bench_busy_ctx *b = (const bench_busy_ctx *)ctx;
+    double sum = 0;
+    long r;
+    for (r = 0; r < reps; ++r) sum += bench_busy(b->iters, 0.25 + (double)(r & 7));
+    return sum;
+}
+
+/* bench_busy iterations that take about BENCH_BUSY_NS here. */
+static long bench_calibrate_busy(const bench_state *st)
+{
+    bench_busy_ctx b;
+    double ns;
+    b.iters = 4096;
+    ns = bench_time_stat(st, bench_busy_batch, &b, BENCH_OVERHEAD_BATCHES, 1) / (double)b.iters;
+    return ns > 0 ? (long)ceil(BENCH_BUSY_NS / ns) : b.iters;
+}
+
 /* Solves an adaptive method at each rtol of a wide list and returns the one
    whose evaluation count is nearest (in ratio) to target. */
 static double bench_tol_for_evals(const bench_state *st, const bench_scene *sc,
@@ -812,36 +835,40 @@ void bench_measure_overhead(bench_state *st)
 {
     static const char *const scenes[2] = {"directional", "hetero"};
     const long target = BENCH_OVERHEAD_EVALS;
-    int s, mi;
+    int s, mi, cost;
     if (!st->cfg.timed) return;
+    st->busy_iters = bench_calibrate_busy(st);
     for (s = 0; s < 2; ++s) {
         bench_overhead *ov = &st->overhead[s];
         int si = bench_find_scene(scenes[s]);
         const bench_scene *sc;
-        hrm_medium m;
-        bench_calls calls;
-        bench_floor fl;
+        hrm_medium m[2];
+        bench_calls calls[2];
         ov->scene = -1;
         ov->n = 0;
         if (si < 0 || !bench_scene_selected(&st->cfg, si)) continue;
         sc = &bench_scenes[si];
         ov->scene = si;
         /* the scene as written: directional as constants, hetero as callbacks */
-        if (!bench_medium_build(sc, BENCH_MEDIUM_CONST, &m, &calls))
-            bench_medium_build(sc, BENCH_MEDIUM_SIGMA, &m, &calls);
-        fl.sc = sc;
-        fl.m = &m;
-        fl.N = (int)target;
-        fl.march = 0;
-        ov->callbacks_ns = bench_time_stat(st, bench_floor_batch, &fl, BENCH_OVERHEAD_BATCHES, 1) /
-                           target;
-        fl.march = 1;
-        ov->loop_ns = bench_time_stat(st, bench_floor_batch, &fl, BENCH_OVERHEAD_BATCHES, 1) / target;
-        ov->loop_error = bench_rel_error(fl.L, bench_reference_get(st, si)->L);
+        for (cost = 0; cost < 2; ++cost) {
+            bench_floor fl;
+            if (!bench_medium_build(sc, BENCH_MEDIUM_CONST, &m[cost], &calls[cost]))
+                bench_medium_build(sc, BENCH_MEDIUM_SIGMA, &m[cost], &calls[cost]);
+            if (cost) bench_medium_busy_li(&m[cost], &calls[cost], st->busy_iters);
+            fl.sc = sc;
+            fl.m = &m[cost];
+            fl.N = (int)target;
+            fl.march = 0;
+            ov->callbacks_ns[cost] =
+                bench_time_stat(st, bench_floor_batch, &fl, BENCH_OVERHEAD_BATCHES, 1) / target;
+            fl.march = 1;
+            ov->loop_ns[cost] =
+                bench_time_stat(st, bench_floor_batch, &fl, BENCH_OVERHEAD_BATCHES, 1) / target;
+            if (!cost) ov->loop_error = bench_rel_error(fl.L, bench_reference_get(st, si)->L);
+        }
         for (mi = 0; mi < st->nmethods; ++mi) {
             const bench_method *me = &st->methods[mi];
             bench_overhead_row *r = &ov->rows[ov->n];
-            bench_case bc;
             hrm_result res;
             if (!bench_method_in_sections(st, mi)) continue;
             bench_progress_show(st, "library overhead");
@@ -849,15 +876,21 @@ void bench_measure_overhead(bench_state *st)
             if (bench_is_swept_over_n(me))
                 r->param = me->id == HRM_SIMPSON || me->id == HRM_RK4 ? target / 2 : target;
             else
-                r->param = bench_tol_for_evals(st, sc, me, &m, &calls, target);
-            bench_case_init(&bc, st, sc, me, BENCH_WARP_NONE, r->param, &m, &calls, "");
-            bc.seeds = 1;
-            if (hrm_solve(&m, (hrm_real)sc->t0, (hrm_real)sc->t1, &bc.options, &res) < 0 ||
-                res.stats.evals <= 0)
-                continue;
-            r->evals = res.stats.evals;
-            r->ns_per_ray = bench_time_stat(st, bench_solve_batch, &bc, BENCH_OVERHEAD_BATCHES, 1);
-            ov->n++;
+                r->param = bench_tol_for_evals(st, sc, me, &m[0], &calls[0], target);
+            for (cost = 0; cost < 2; ++cost) {
+                bench_case bc;
+                bench_case_init(&bc, st, sc, me, BENCH_WARP_NONE, r->param, &m[cost],
+                                &calls[cost], "");
+                bc.seeds = 1;
+                if (hrm_solve(&m[cost], (hrm_real)sc->t0, (hrm_real)sc->t1, &bc.options, &res) <
+                        0 ||
+                    res.stats.evals <= 0)
+                    break;
+                r->evals = res.stats.evals;
+                r->ns_per_ray[cost] =
+                    bench_time_stat(st, bench_solve_batch, &bc, BENCH_OVERHEAD_BATCHES, 1);
+            }
+            if (cost == 2) ov->n++;
         }
     }
 }

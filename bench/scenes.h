@@ -59,7 +59,9 @@ typedef struct bench_counts {
 typedef struct bench_calls {
     const void *params;
     bench_counts n;
-    double const_sigma_a[3], const_sigma_s[3]; /* bench_medium_build */
+    double const_sigma_a[3], const_sigma_s[3]; /* bench_medium_as_sigma */
+    hrm_spectrum_fn inner_li;                  /* bench_medium_busy_li */
+    long busy_iters;
 } bench_calls;
 
 #define BENCH_PARAMS(type, user) ((const type *)((const bench_calls *)(user))->params)
@@ -115,5 +117,13 @@ extern const int bench_scene_count;
    way (a heterogeneous scene as constants). */
 int bench_medium_build(const bench_scene *sc, bench_medium_id how, hrm_medium *m,
                        bench_calls *calls);
+
+/* Makes the medium's Li cost about `iters` dependent floating-point
+   operations more (bench_busy), without changing its value beyond a
+   rounding of 1e-300: the Li of a renderer that traces a shadow ray. */
+void bench_medium_busy_li(hrm_medium *m, bench_calls *calls, long iters);
+
+/* `iters` dependent multiply-adds from x; converges to 0.5 (never 0). */
+double bench_busy(long iters, double x);
 
 #endif
