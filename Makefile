@@ -2,32 +2,52 @@
 #   make test    the compile matrix (gcc/clang, C99/C++, double/float,
 #                -O0/-O2, ASan+UBSan, HRM_STATIC, C/C++ linkage), each run
 #                of the test suite, ending with the line "N passed, N failed"
-#   make bench   the single-ray convergence benchmark (writes bench/out/)
+#   make bench   the single-ray convergence benchmark: tables on the
+#                terminal, files in bench/out/ only (ignored by git)
+#   make bench-quick   the same over short ranges (bench/out/quick/)
+#   make bench-snapshot   make bench, then refresh the committed snapshot
+#                bench/results/ (summary.md, timing.md, the figures but
+#                time.svg) from bench/out/; run it on request, and commit
 #   make examples
 CC      ?= cc
 WARN    = -Wall -Wextra -pedantic -Werror -Wshadow -Wdouble-promotion
 BUILD   = build
 
-.PHONY: all test bench bench-quick examples clean
+.PHONY: all test bench bench-quick bench-snapshot examples clean
 
 all: test
 
 test:
 	@sh tests/run.sh
 
-$(BUILD)/bench: bench/bench.c bench/reference.h bench/scenes.h bench/svg.h hrm.h
-	@mkdir -p $(BUILD)
-	$(CC) -std=c99 -O2 $(WARN) -I. bench/bench.c -o $@ -lm
+# The benchmark: measurement, reporting, figures and the command line, with
+# the scenes, the reference quadrature and the SVG writer (bench/README.md).
+BENCH_SRC = bench/main.c bench/measure.c bench/report.c bench/figures.c \
+            bench/scenes.c bench/reference.c bench/svg.c
+BENCH_HDR = bench/bench.h bench/scenes.h bench/reference.h bench/svg.h
 
-# bench/out/ is the run's scratch output (ignored by git); bench/results/ is
-# the committed snapshot of its figures and summary that the README links to.
+$(BUILD)/bench: $(BENCH_SRC) $(BENCH_HDR) hrm.h
+	@mkdir -p $(BUILD)
+	$(CC) -std=c99 -O2 $(WARN) -I. $(BENCH_SRC) -o $@ -lm
+
+# bench/out/ is the run's output (ignored by git): make bench writes nothing
+# else. bench/results/ is the committed snapshot that the READMEs link to,
+# refreshed only by make bench-snapshot: summary.md and the figures are the
+# same on every run of the same build; timing.md is one machine's timings.
+# time.svg (error vs time) stays out of it.
 bench: $(BUILD)/bench
 	./$(BUILD)/bench --out bench/out
-	@mkdir -p bench/results
-	cp bench/out/*.svg bench/out/summary.md bench/results/
 
 bench-quick: $(BUILD)/bench
 	./$(BUILD)/bench --quick --out bench/out/quick
+
+bench-snapshot: bench
+	@mkdir -p bench/results
+	rm -f bench/results/*.svg bench/results/*.md
+	cp bench/out/summary.md bench/out/timing.md bench/results/
+	for f in bench/out/*.svg; do \
+	    case $$f in */time.svg) ;; *) cp $$f bench/results/ ;; esac; \
+	done
 
 $(BUILD)/example_ray: examples/ray.c hrm.h
 	@mkdir -p $(BUILD)
