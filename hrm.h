@@ -163,9 +163,8 @@
    Orders are for smooth integrands; a discontinuity (a sharp shadow) drags
    every fixed-step method down to first order; the adaptive methods place
    small steps around it.
-   In a heterogeneous medium without a closed-form transmittance, the rule
-   computes tau at its own nodes from the same sigma_t samples at its own
-   order (no extra medium evaluations).
+   Transmittance (see TRANSMITTANCE below) is integrated in t apart from
+   the source samples by default; a closed form, where given, is exact.
 
    Two forms for the IVP solvers (options.form):
    HRM_FORM_OPTICAL_DEPTH (default) state (tau, A), dtau/dt = sigma_t,
@@ -231,19 +230,24 @@
    (Monte Carlo's pdf is then du/dt) and adaptive methods start from it.
    h_min, h_max and h0 are in units of u under a warp.
    HRM_WARP_DISTANCE     u = 1 - exp(-sigma_ref (t - t0)) (Munoz eq. 13,
-                         reflected so that u grows with t). sigma_ref = 0:
-                         the smallest sigma_t over the channels at t0 (one
-                         medium evaluation; Munoz takes the mean, which lets
-                         the warped integrand of thinner channels grow
-                         exponentially); zero or denormal: no warp. Exact for
-                         any N in a grey homogeneous medium under constant
-                         Li. u resolves t while 1 - u >> epsilon: the ray
-                         past ln(2/eps) mean free paths of sigma_ref (36.7 in
-                         double, 16.6 in float) is dropped, harmless where no
-                         channel is thinner than sigma_ref; a finite ray with
-                         a thinner channel at t0 lowers sigma_ref toward it
-                         (at least ln(1/eps)/(2 (t1 - t0))). Give an infinite
-                         ray a sigma_ref no larger than sigma_t along it.
+                         reflected so that u grows with t). u resolves t
+                         only while 1 - u >> epsilon, i.e. for ln(2/eps)
+                         mean free paths of sigma_ref (36.7 in double, 16.6
+                         in float), so sigma_ref is never larger than the
+                         ray's own optical depth allows: no part of a
+                         finite ray is left unsampled unless the thinnest
+                         channel's Tr from t0 has fallen below eps/2 there
+                         (it then adds less than eps/2 of the largest
+                         S/sigma_t beyond). sigma_ref = 0: the thinnest
+                         channel's mean extinction over the ray up to that
+                         point (Munoz takes sigma_t at t0; the mean follows
+                         the medium that matters). Finding that point costs
+                         medium evaluations: none for a homogeneous medium,
+                         about 20-40 calls of a transmittance callback, or a
+                         coarse march of the transmittance layer (tau_tol
+                         1e-3) over sigma callbacks. sigma_ref zero or
+                         denormal after that: no warp. Exact for any N in a
+                         grey homogeneous medium under constant Li.
    HRM_WARP_EQUIANGULAR  u = atan((t - delta)/D) for a point light D from the
                          ray, projecting at delta (Munoz eq. 16, Kulla and
                          Fajardo 2012); hrm_equiangular_warp computes delta
@@ -262,6 +266,42 @@
    transmittance callback is asked for Tr(t0, t) at that last abscissa.
    In the RTE form, warps make the equation stiff (Munoz s.6); the
    optical-depth form is not affected.
+
+   ==========================================================================
+   TRANSMITTANCE (options.tau_mode, options.tau_tol)
+   ==========================================================================
+   tau is integrated in t, over the actual distances between abscissae,
+   never in the warp's variable u (where dt/du is nearly singular at a
+   warp's ends). A constant sigma_t given through callbacks therefore gives
+   the L and Tr of the same medium flagged HRM_MEDIUM_HOMOGENEOUS, to
+   round-off, under every warp and for every method. A closed form (the
+   homogeneous flag, or the transmittance callback) is always used where
+   given. Otherwise:
+   HRM_TAU_DECOUPLED (default)  sigma_t is sampled on its own abscissae,
+       apart from the source samples (decoupled ray marching: Kulla and
+       Fajardo 2012; Munoz 2014 s.6), on panels in t that march along the
+       ray: Chebyshev interpolation of degree 8, then 16, on each panel,
+       the panel accepted when its estimated error of tau, weighted by Tr
+       at its start, is at most tau_tol times its own increment of tau.
+       L's relative error from tau is then below tau_tol, whatever the
+       warp does with the source samples, and no effort goes where Tr is
+       already 0. Cost: medium evaluations only (no Le or Li call), about
+       16 per panel; a smooth medium varying by +-50% over the ray takes
+       50-200 of them at the default tau_tol, a constant one 9, a jump in
+       sigma (a medium's boundary) a few hundred. When a sigma evaluation
+       costs as much as a shadow ray, loosen tau_tol or couple.
+   HRM_TAU_COUPLED  no extra medium evaluation: tau at each node comes from
+       the sigma_t samples at the source nodes at the rule's own order (the
+       papers' way). sigma_t at the first node is integrated over the
+       distance in t exactly and only the rest by the rule in u, so a
+       constant medium is exact; a varying one under a warp is integrated
+       where the warp puts the source samples, which is sparse far from a
+       light: the weakness of quadrature in heterogeneous media that Munoz
+       2014 s.6 reports.
+   hrm_transmittance ignores options.warp (tau in t needs none), except
+   that an infinite ray ends where the warp puts its last abscissa.
+   Both forms: the RTE form integrates Tr in its own state (dTr/dt =
+   -sigma_t Tr), from sigma_t at its stages, unless a closed form is given.
 
    ==========================================================================
    WHAT hrm DOES NOT DO
@@ -324,25 +364,28 @@ typedef enum hrm_status {
     HRM_STATUS_END_ /* not a status */
 } hrm_status;
 
-/* Methods. HRM_METHOD_DEFAULT (0) lets hrm choose (currently HRM_SIMPSON). */
+/* Methods. HRM_METHOD_DEFAULT (0) lets hrm choose (currently HRM_SIMPSON).
+   One list: the enum, the names and the implementation's method table
+   (family, default steps, order on smooth integrands, whether the RTE form
+   applies, tableau) come from it, so they cannot drift apart. */
 #define HRM__METHOD_LIST(X)                                                   \
-    X(HRM_RECTANGLE, "rectangle")                                            \
-    X(HRM_SIMPSON, "simpson")                                                \
-    X(HRM_MONTE_CARLO, "monte-carlo")                                        \
-    X(HRM_EULER, "euler")                                                    \
-    X(HRM_RK4, "rk4")                                                        \
-    X(HRM_ADAMS_BASHFORTH, "adams-bashforth")                                \
-    X(HRM_NESTED_SIMPSON, "nested-simpson")                                  \
-    X(HRM_GAUSS_KRONROD, "gauss-kronrod")                                    \
-    X(HRM_BOGACKI_SHAMPINE, "bogacki-shampine")                              \
-    X(HRM_DORMAND_PRINCE, "dormand-prince")                                  \
-    X(HRM_FEHLBERG, "fehlberg")                                              \
-    X(HRM_CASH_KARP, "cash-karp")                                            \
-    X(HRM_VERNER, "verner")
+    X(HRM_RECTANGLE, "rectangle", HRM__FIXED_QUAD, 32, 2, 0, 0)                \
+    X(HRM_SIMPSON, "simpson", HRM__FIXED_QUAD, 32, 4, 0, 0)                    \
+    X(HRM_MONTE_CARLO, "monte-carlo", HRM__FIXED_QUAD, 32, 0.5, 0, 0)          \
+    X(HRM_EULER, "euler", HRM__FIXED_IVP, 32, 1, 1, &hrm__euler)               \
+    X(HRM_RK4, "rk4", HRM__FIXED_IVP, 32, 4, 1, &hrm__rk4)                     \
+    X(HRM_ADAMS_BASHFORTH, "adams-bashforth", HRM__FIXED_IVP, 32, 4, 1, &hrm__rk4) \
+    X(HRM_NESTED_SIMPSON, "nested-simpson", HRM__ADAPTIVE_QUAD, 4, 4, 0, 0)    \
+    X(HRM_GAUSS_KRONROD, "gauss-kronrod", HRM__ADAPTIVE_QUAD, 1, 22, 0, 0)     \
+    X(HRM_BOGACKI_SHAMPINE, "bogacki-shampine", HRM__PAIR, 0, 3, 1, &hrm__bs)  \
+    X(HRM_DORMAND_PRINCE, "dormand-prince", HRM__PAIR, 0, 5, 1, &hrm__dp)      \
+    X(HRM_FEHLBERG, "fehlberg", HRM__PAIR, 0, 4, 1, &hrm__rkf)                 \
+    X(HRM_CASH_KARP, "cash-karp", HRM__PAIR, 0, 4, 1, &hrm__ck)                \
+    X(HRM_VERNER, "verner", HRM__PAIR, 0, 6, 1, &hrm__vr)
 
 typedef enum hrm_method {
     HRM_METHOD_DEFAULT = 0,
-#define HRM__METHOD_ENUM(name, text) name,
+#define HRM__METHOD_ENUM(name, text, family, steps, order, rte, tableau) name,
     HRM__METHOD_LIST(HRM__METHOD_ENUM)
 #undef HRM__METHOD_ENUM
     HRM_METHOD_COUNT /* one past the last method */
@@ -395,9 +438,11 @@ typedef enum hrm_warp_kind {
 
 typedef struct hrm_warp {
     hrm_warp_kind kind;
-    hrm_real sigma_ref; /* distance: 0 means the mean of sigma_t over the
-                           channels at t0 (one medium evaluation). Below the
-                           smallest normal number: no warp. */
+    hrm_real sigma_ref; /* distance: 0 means the thinnest channel's mean
+                           extinction over the ray, up to where its Tr has
+                           fallen below eps/2 (see IMPORTANCE SAMPLING); a
+                           larger value is lowered to what the ray allows.
+                           Below the smallest normal number: no warp. */
     hrm_real delta, D;  /* equiangular: the point light projects onto the
                            ray at t = delta and lies D >= 0 from it (units
                            of t; see hrm_equiangular_warp) */
@@ -461,9 +506,9 @@ typedef struct hrm_options {
     hrm_real tau_tol;   /* decoupled tau: the error of each optical-depth
                            increment relative to itself, weighted by Tr
                            where it occurs, so that L's relative error from
-                           tau stays below it. 0: rtol/8 for the adaptive
-                           methods, 1e-10 (1e-5 with float) for the
-                           fixed-step ones */
+                           tau stays below it. 0: rtol/32 for the adaptive
+                           methods, 0.01 N^-order for the fixed-step ones
+                           (their own error's rate); at least 64 epsilons */
 } hrm_options;
 
 typedef struct hrm_stats {
@@ -492,7 +537,9 @@ HRM_API hrm_status hrm_solve(const hrm_medium *medium, hrm_real t0, hrm_real t1,
 
 /* Eye-ray (or shadow-ray) transmittance Tr(t0, t1) alone: no source is
    evaluated. Closed form when the medium has one (no sigma evaluation for a
-   homogeneous medium), else sigma_t integrated with options' method.
+   homogeneous medium), else sigma_t integrated in t by the transmittance
+   layer to options->tau_tol (HRM_TAU_COUPLED: by options' method over its
+   nodes). options->warp is used only to end an infinite ray.
    Tr: required. stats: optional. On error Tr is 1 in every channel. */
 HRM_API hrm_status hrm_transmittance(const hrm_medium *medium, hrm_real t0,
                                      hrm_real t1, const hrm_options *options,
@@ -540,6 +587,26 @@ HRM_API int hrm_version(void);
 #else
 #define HRM__DEF
 #endif
+
+/* Internal limits (fixed storage: no allocation in a solve). */
+#ifndef HRM_MAX_DEPTH
+#define HRM_MAX_DEPTH 60     /* nested Simpson and local Gauss-Kronrod depth */
+#endif
+#ifndef HRM_NS_PANELS
+#define HRM_NS_PANELS 32     /* nested Simpson's initial panels at most */
+#endif
+#ifndef HRM_GK_INITIAL
+#define HRM_GK_INITIAL 32    /* Gauss-Kronrod's initial intervals at most */
+#endif
+#ifndef HRM_GK_INTERVALS
+#define HRM_GK_INTERVALS 128 /* global Gauss-Kronrod's interval storage */
+#endif
+
+/* Method families (the method table's second column). */
+#define HRM__FIXED_QUAD 0
+#define HRM__FIXED_IVP 1
+#define HRM__ADAPTIVE_QUAD 2
+#define HRM__PAIR 3
 
 #define HRM__R(x) ((hrm_real)(x))
 #define HRM__IS_FLOAT (sizeof(hrm_real) == sizeof(float))
@@ -608,8 +675,18 @@ typedef struct hrm__ctx {
     hrm_real t0, t1, T;    /* T = t1 - t0 */
     hrm_real pa, pb;       /* parameter range, s(pa) = t0, s(pb) = t1 */
     int homog;             /* constant coefficients */
-    int closed;            /* tau at any abscissa in closed form */
-    int need_st;           /* sigma_t samples needed */
+    int closed;            /* Tr at every node known: a closed form, or the
+                              decoupled transmittance layer */
+    int decoupled;         /* tau from the transmittance layer */
+    int coupled;           /* tau by the rules from the source nodes' sigma_t */
+    int need_st;           /* sigma_t samples at the source nodes needed
+                              (coupled tau, or the RTE form) */
+    struct hrm__tau *tau;  /* the transmittance layer, when decoupled */
+    hrm_real sbar[HRM__CH];/* coupled tau: sigma_t at the first node; the
+                              rules integrate sigma_t - sbar and add
+                              sbar * (distance) exactly */
+    int have_sbar;
+    hrm_real off_end;      /* s_end - t0 */
     int use_le, use_li;    /* source terms present */
     int per_length;        /* HRM_EMISSION_PER_LENGTH */
     int rte;               /* HRM_FORM_RTE */
@@ -685,6 +762,343 @@ static int hrm__coeffs(hrm__ctx *c, hrm_real s, int want_sa, int want_ss, int wa
     return called;
 }
 
+static hrm_real hrm__abscissa(const hrm__ctx *c, hrm_real off)
+{
+    hrm_real s = c->t0 + off;
+    return s < c->t1 ? s : c->t1; /* t0 + (t1 - t0) may round past t1 */
+}
+
+/* ---------------------------------------------------------------------- */
+/* The transmittance layer                                                 */
+/* ---------------------------------------------------------------------- */
+
+/* Optical depth is integrated in t, never in a warped variable: a warp's
+   dt/du is nearly singular at its ends, and even a constant sigma_t comes
+   out wrong there. In the decoupled mode (the default) sigma_t is sampled
+   at its own abscissae, apart from the source samples (Kulla and Fajardo
+   2012; Munoz 2014 s.6), on panels [a, b] in t that march along the ray.
+   On each panel sigma_t is interpolated at the Chebyshev-Lobatto points of
+   degree 8, then 16 (nested: the 9 points of degree 8 are among the 17 of
+   degree 16, and a panel shares its first point with its neighbour), and
+   the interpolant's antiderivative gives tau anywhere in the panel at the
+   interpolant's accuracy (Clenshaw-Curtis; Trefethen, "Approximation
+   Theory and Approximation Practice", 2013, ch. 3 and 19). The size of the
+   last two coefficients, times the panel's length, estimates the error of
+   the panel's tau; a panel is accepted when that error, weighted by the
+   transmittance at its start, is at most tau_tol times the panel's own
+   increment of tau. Summed over the panels, the relative error of L that
+   tau causes then stays below tau_tol (sum of tol * dtau * exp(-tau) <= tol),
+   and no effort goes where Tr is already 0. Panels that fail are shrunk;
+   the next panel's length follows the last one's error.
+
+   The layer keeps a table of the panels it accepted (their ends, degree
+   and tau at the start), so that a query behind the current panel (a
+   rejected Runge-Kutta step, a Gauss-Kronrod interval bisected anywhere)
+   rebuilds that panel from the same abscissae, to the same values, instead
+   of marching again. Two panels' coefficients are cached. */
+
+#ifndef HRM_TAU_PANELS
+#define HRM_TAU_PANELS 128 /* panels remembered; older ones are rebuilt by
+                              marching again from t0 when asked for */
+#endif
+#define HRM__CHEB 16       /* the highest degree of a panel */
+#define HRM__TCACHE 8      /* panels whose coefficients are kept */
+
+/* The Chebyshev polynomials at the degree-16 Lobatto points, ascending in t:
+   T_k(-cos(j pi / 16)) = (-1)^k cos(j k pi / 16), row k, column j (the
+   degree-8 points are the even columns). */
+static const hrm_real hrm__cheb_T[17][17] = {
+    {1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1},
+    {-1, -0.980785280403230449126, -0.923879532511286756128, -0.831469612302545237079, -0.707106781186547524401, -0.555570233019602224743, -0.382683432365089771728, -0.195090322016128267848, 0, 0.195090322016128267848, 0.382683432365089771728, 0.555570233019602224743, 0.707106781186547524401, 0.831469612302545237079, 0.923879532511286756128, 0.980785280403230449126, 1},
+    {1, 0.923879532511286756128, 0.707106781186547524401, 0.382683432365089771728, 0, -0.382683432365089771728, -0.707106781186547524401, -0.923879532511286756128, -1, -0.923879532511286756128, -0.707106781186547524401, -0.382683432365089771728, 0, 0.382683432365089771728, 0.707106781186547524401, 0.923879532511286756128, 1},
+    {-1, -0.831469612302545237079, -0.382683432365089771728, 0.195090322016128267848, 0.707106781186547524401, 0.980785280403230449126, 0.923879532511286756128, 0.555570233019602224743, 0, -0.555570233019602224743, -0.923879532511286756128, -0.980785280403230449126, -0.707106781186547524401, -0.195090322016128267848, 0.382683432365089771728, 0.831469612302545237079, 1},
+    {1, 0.707106781186547524401, 0, -0.707106781186547524401, -1, -0.707106781186547524401, 0, 0.707106781186547524401, 1, 0.707106781186547524401, 0, -0.707106781186547524401, -1, -0.707106781186547524401, 0, 0.707106781186547524401, 1},
+    {-1, -0.555570233019602224743, 0.382683432365089771728, 0.980785280403230449126, 0.707106781186547524401, -0.195090322016128267848, -0.923879532511286756128, -0.831469612302545237079, 0, 0.831469612302545237079, 0.923879532511286756128, 0.195090322016128267848, -0.707106781186547524401, -0.980785280403230449126, -0.382683432365089771728, 0.555570233019602224743, 1},
+    {1, 0.382683432365089771728, -0.707106781186547524401, -0.923879532511286756128, 0, 0.923879532511286756128, 0.707106781186547524401, -0.382683432365089771728, -1, -0.382683432365089771728, 0.707106781186547524401, 0.923879532511286756128, 0, -0.923879532511286756128, -0.707106781186547524401, 0.382683432365089771728, 1},
+    {-1, -0.195090322016128267848, 0.923879532511286756128, 0.555570233019602224743, -0.707106781186547524401, -0.831469612302545237079, 0.382683432365089771728, 0.980785280403230449126, 0, -0.980785280403230449126, -0.382683432365089771728, 0.831469612302545237079, 0.707106781186547524401, -0.555570233019602224743, -0.923879532511286756128, 0.195090322016128267848, 1},
+    {1, 0, -1, 0, 1, 0, -1, 0, 1, 0, -1, 0, 1, 0, -1, 0, 1},
+    {-1, 0.195090322016128267848, 0.923879532511286756128, -0.555570233019602224743, -0.707106781186547524401, 0.831469612302545237079, 0.382683432365089771728, -0.980785280403230449126, 0, 0.980785280403230449126, -0.382683432365089771728, -0.831469612302545237079, 0.707106781186547524401, 0.555570233019602224743, -0.923879532511286756128, -0.195090322016128267848, 1},
+    {1, -0.382683432365089771728, -0.707106781186547524401, 0.923879532511286756128, 0, -0.923879532511286756128, 0.707106781186547524401, 0.382683432365089771728, -1, 0.382683432365089771728, 0.707106781186547524401, -0.923879532511286756128, 0, 0.923879532511286756128, -0.707106781186547524401, -0.382683432365089771728, 1},
+    {-1, 0.555570233019602224743, 0.382683432365089771728, -0.980785280403230449126, 0.707106781186547524401, 0.195090322016128267848, -0.923879532511286756128, 0.831469612302545237079, 0, -0.831469612302545237079, 0.923879532511286756128, -0.195090322016128267848, -0.707106781186547524401, 0.980785280403230449126, -0.382683432365089771728, -0.555570233019602224743, 1},
+    {1, -0.707106781186547524401, 0, 0.707106781186547524401, -1, 0.707106781186547524401, 0, -0.707106781186547524401, 1, -0.707106781186547524401, 0, 0.707106781186547524401, -1, 0.707106781186547524401, 0, -0.707106781186547524401, 1},
+    {-1, 0.831469612302545237079, -0.382683432365089771728, -0.195090322016128267848, 0.707106781186547524401, -0.980785280403230449126, 0.923879532511286756128, -0.555570233019602224743, 0, 0.555570233019602224743, -0.923879532511286756128, 0.980785280403230449126, -0.707106781186547524401, 0.195090322016128267848, 0.382683432365089771728, -0.831469612302545237079, 1},
+    {1, -0.923879532511286756128, 0.707106781186547524401, -0.382683432365089771728, 0, 0.382683432365089771728, -0.707106781186547524401, 0.923879532511286756128, -1, 0.923879532511286756128, -0.707106781186547524401, 0.382683432365089771728, 0, -0.382683432365089771728, 0.707106781186547524401, -0.923879532511286756128, 1},
+    {-1, 0.980785280403230449126, -0.923879532511286756128, 0.831469612302545237079, -0.707106781186547524401, 0.555570233019602224743, -0.382683432365089771728, 0.195090322016128267848, 0, -0.195090322016128267848, 0.382683432365089771728, -0.555570233019602224743, 0.707106781186547524401, -0.831469612302545237079, 0.923879532511286756128, -0.980785280403230449126, 1},
+    {1, -1, 1, -1, 1, -1, 1, -1, 1, -1, 1, -1, 1, -1, 1, -1, 1},
+};
+
+typedef struct hrm__tpanel {
+    hrm_real a, b;          /* offsets from t0 */
+    hrm_real tau_a[HRM__CH], tau_b[HRM__CH];
+    int deg;                /* 8 or 16 */
+} hrm__tpanel;
+
+typedef struct hrm__tcoef {
+    long id;                /* the panel's index, -1: empty */
+    hrm_real e[HRM__CHEB + 2][HRM__CH]; /* antiderivative's coefficients,
+                                            channels innermost */
+} hrm__tcoef;
+
+typedef struct hrm__tau {
+    hrm__tpanel tab[HRM_TAU_PANELS]; /* panel i at tab[i % HRM_TAU_PANELS] */
+    long count;             /* panels accepted so far */
+    hrm_real end;           /* the farthest offset that may be asked for */
+    hrm_real tol;
+    hrm_real next_h;        /* the next panel's trial length */
+    hrm_real sig_b[HRM__CH];/* sigma_t at the last panel's end */
+    hrm__tcoef cache[HRM__TCACHE];
+    int last;               /* the cache entry used last */
+    int next;               /* the entry to fill next (round robin) */
+} hrm__tau;
+
+/* sigma_t at offset off from t0: one medium evaluation. */
+static void hrm__sigma_t_at(hrm__ctx *c, hrm_real off, hrm_real st[HRM__CH])
+{
+    hrm_real sa[HRM__CH], ss[HRM__CH];
+    c->stats.medium_evals += hrm__coeffs(c, hrm__abscissa(c, off), 0, 0, 1, sa, ss, st);
+}
+
+/* Chebyshev coefficients of sigma_t on a panel from its samples f at the
+   degree-n Lobatto points (f[j * 16 / n], ascending in t), integrated into
+   the antiderivative that vanishes at the panel's start: e[0..n+1]. Also
+   the panel's increment (in units of half its length) and the error
+   estimate |d_(n-1)| + |d_n| (in units of sigma_t). */
+static void hrm__cheb_fit(const hrm_real f[HRM__CHEB + 1], int n,
+                          hrm_real e[HRM__CHEB + 2][HRM__CH], int ch,
+                          hrm_real *incr, hrm_real *err)
+{
+    hrm_real d[HRM__CHEB + 3], sum = 0, alt = 0;
+    int j, k, step = HRM__CHEB / n;
+    for (k = 0; k <= n; ++k) {
+        hrm_real acc;
+        const hrm_real *T = hrm__cheb_T[k];
+        /* the DCT-I: T_k at the degree-n points are row k, every
+           step-th column, the ends halved */
+        acc = (f[0] * T[0] + f[HRM__CHEB] * T[HRM__CHEB]) / 2;
+        for (j = step; j < HRM__CHEB; j += step) acc += f[j] * T[j];
+        acc *= (hrm_real)2 / (hrm_real)n;
+        d[k] = (k == 0 || k == n) ? acc / 2 : acc;
+    }
+    d[n + 1] = d[n + 2] = 0;
+    /* the integral of T_0 is T_1, of T_1 is T_2 / 4, of T_k is
+       T_(k+1) / (2(k+1)) - T_(k-1) / (2(k-1)) */
+    e[1][ch] = d[0] - d[2] / 2;
+    for (k = 2; k <= n + 1; ++k) e[k][ch] = (d[k - 1] - d[k + 1]) / (hrm_real)(2 * k);
+    for (k = 1; k <= n + 1; ++k) {
+        sum += e[k][ch];
+        alt += (k % 2) ? -e[k][ch] : e[k][ch];
+    }
+    e[0][ch] = -alt;         /* F(-1) = 0 */
+    *incr = e[0][ch] + sum;  /* F(1) */
+    *err = HRM_FABS(d[n - 1]) + HRM_FABS(d[n]);
+}
+
+/* F(xi) = sum e_k T_k(xi) in every channel by Clenshaw's recurrence, the
+   channels side by side (independent chains, no waiting on one). */
+static void hrm__cheb_eval(const hrm_real e[HRM__CHEB + 2][HRM__CH], int n, hrm_real xi,
+                           hrm_real F[HRM__CH])
+{
+    hrm_real b1[HRM__CH], b2[HRM__CH], x2 = 2 * xi;
+    int k, i;
+    for (i = 0; i < HRM__CH; ++i) b1[i] = b2[i] = 0;
+    for (k = n + 1; k >= 1; --k)
+        for (i = 0; i < HRM__CH; ++i) {
+            hrm_real b0 = e[k][i] + x2 * b1[i] - b2[i];
+            b2[i] = b1[i];
+            b1[i] = b0;
+        }
+    for (i = 0; i < HRM__CH; ++i) F[i] = e[0][i] + xi * b1[i] - b2[i];
+}
+
+/* The sample positions of a panel: a + (b - a) (1 - cos(j pi / 16)) / 2. */
+static hrm_real hrm__cheb_at(hrm_real a, hrm_real b, int j16)
+{
+    /* (1 - cos(j pi / 16)) / 2 = (1 + T_1 at point j) / 2 */
+    return j16 == 16 ? b : a + (b - a) * ((1 + hrm__cheb_T[1][j16]) / 2);
+}
+
+/* Sample the panel [a, b] at degree n given f[.][0] (and, when have8, the
+   degree-8 samples), fit every channel: dtau its increments, err its
+   error estimates, worst the largest error over its share of tol. */
+static hrm_real hrm__tau_fit(hrm__ctx *c, const hrm__tau *L, hrm_real a, hrm_real b, int n,
+                             int have8, const hrm_real *tau_a,
+                             hrm_real f[HRM__CH][HRM__CHEB + 1], hrm__tcoef *co,
+                             hrm_real dtau[HRM__CH])
+{
+    hrm_real v[HRM__CH], worst = 0;
+    int j, i, step = HRM__CHEB / n;
+    for (j = step; j <= HRM__CHEB; j += step) {
+        if (have8 && j % 2 == 0) continue;
+        hrm__sigma_t_at(c, hrm__cheb_at(a, b, j), v);
+        for (i = 0; i < HRM__CH; ++i) f[i][j] = v[i];
+    }
+    for (i = 0; i < HRM__CH; ++i) {
+        hrm_real err, big = 0, allow, w;
+        hrm__cheb_fit(f[i], n, co->e, i, &dtau[i], &err);
+        dtau[i] *= (b - a) / 2;
+        if (dtau[i] < 0) dtau[i] = 0;
+        for (j = 0; j <= HRM__CHEB; j += step) big = f[i][j] > big ? f[i][j] : big;
+        /* round-off in the coefficients is a few epsilons of sigma_t */
+        allow = L->tol * dtau[i] + 16 * HRM__EPS * (b - a) * big;
+        err *= b - a;
+        if (err > 0) {
+            w = HRM_EXP(-tau_a[i]); /* an error where Tr is 0 costs nothing */
+            err *= w;
+            if (err > 0) {
+                hrm_real r = allow > 0 ? err / allow : HRM__R(1e30);
+                worst = r > worst ? r : worst;
+            }
+        }
+    }
+    return worst;
+}
+
+static void hrm__forget(hrm__tau *L)
+{
+    int k;
+    for (k = 0; k < HRM__TCACHE; ++k) L->cache[k].id = -1;
+    L->last = L->next = 0;
+}
+
+/* A cache entry for a new panel's coefficients. */
+static hrm__tcoef *hrm__tcache_slot(hrm__tau *L)
+{
+    L->last = L->next;
+    L->next = (L->next + 1) % HRM__TCACHE;
+    return &L->cache[L->last];
+}
+
+static void hrm__tau_init(hrm__tau *L, hrm_real end, hrm_real tol)
+{
+    L->count = 0;
+    L->end = end;
+    L->tol = tol;
+    L->next_h = 0;
+    hrm__forget(L);
+}
+
+/* Accept one more panel after the last (the ray's first from t0), its
+   coefficients into co. */
+static void hrm__tau_march(hrm__ctx *c, hrm__tau *L, hrm__tcoef *co)
+{
+    hrm_real f[HRM__CH][HRM__CHEB + 1], dtau[HRM__CH];
+    hrm_real a = 0, tau_a[HRM__CH], h, res;
+    int i, n;
+    long id = L->count;
+
+    if (id == 0) {
+        hrm_real big = 0;
+        hrm__fill(tau_a, HRM__CH, 0);
+        hrm__sigma_t_at(c, 0, L->sig_b);
+        for (i = 0; i < HRM__CH; ++i) big = L->sig_b[i] > big ? L->sig_b[i] : big;
+        /* start at 8 mean free paths of the densest channel, or the ray */
+        h = big > 0 && 8 / big < L->end ? 8 / big : L->end;
+    } else {
+        const hrm__tpanel *p = &L->tab[(id - 1) % HRM_TAU_PANELS];
+        a = p->b;
+        memcpy(tau_a, p->tau_b, sizeof tau_a);
+        h = L->next_h;
+    }
+    /* No panel is shorter than what t resolves near it. */
+    res = 64 * HRM__EPS * (HRM_FABS(c->t0) + a) +
+          (HRM__IS_FLOAT ? HRM__R(FLT_MIN) : HRM__R(DBL_MIN));
+    for (;;) {
+        hrm_real b, worst, fac;
+        int floor = h <= res; /* the last try: accepted whatever its error */
+        if (floor) h = res;
+        b = a + h;
+        if (b > L->end || L->end - b < h / 8) b = L->end; /* no sliver */
+        for (i = 0; i < HRM__CH; ++i) f[i][0] = L->sig_b[i];
+        n = 8;
+        worst = hrm__tau_fit(c, L, a, b, n, 0, tau_a, f, co, dtau);
+        /* degree 16 when degree 8 is near; hopeless panels shrink at once */
+        if (worst > 1 && worst < HRM__R(1e6) && !floor) {
+            n = 16;
+            worst = hrm__tau_fit(c, L, a, b, n, 1, tau_a, f, co, dtau);
+        }
+        fac = worst > 0 ? HRM__R(0.8) * HRM_POW(worst, -HRM__R(1) / (hrm_real)(n + 1)) : 4;
+        if (worst <= 1 || floor || c->status != HRM_OK) {
+            hrm__tpanel *p = &L->tab[id % HRM_TAU_PANELS];
+            p->a = a;
+            p->b = b;
+            p->deg = n;
+            for (i = 0; i < HRM__CH; ++i) {
+                p->tau_a[i] = tau_a[i];
+                p->tau_b[i] = tau_a[i] + dtau[i];
+                L->sig_b[i] = f[i][HRM__CHEB];
+            }
+            co->id = id;
+            L->count = id + 1;
+            L->next_h = (b - a) * (fac < HRM__R(0.5) ? HRM__R(0.5) : fac > 4 ? 4 : fac);
+            return;
+        }
+        h = (b - a) * (fac < HRM__R(0.125) ? HRM__R(0.125) : fac > HRM__R(0.5) ? HRM__R(0.5) : fac);
+    }
+}
+
+/* tau(t0, t0 + off) in every channel. */
+static void hrm__tau_at(hrm__ctx *c, hrm__tau *L, hrm_real off, hrm_real tau[HRM__CH])
+{
+    const hrm__tpanel *p;
+    hrm__tcoef *co;
+    long lo, hi;
+    hrm_real xi;
+    int i;
+
+    hrm__fill(tau, HRM__CH, 0);
+    if (!(off > 0)) return;
+    if (off > L->end) off = L->end;
+    /* Past the last panel: march on. */
+    while (L->count == 0 || off > L->tab[(L->count - 1) % HRM_TAU_PANELS].b) {
+        hrm__tau_march(c, L, hrm__tcache_slot(L));
+        if (c->status != HRM_OK) return;
+    }
+    lo = L->count > HRM_TAU_PANELS ? L->count - HRM_TAU_PANELS : 0;
+    hi = L->count - 1;
+    co = &L->cache[L->last];
+    if (co->id >= lo && off > L->tab[co->id % HRM_TAU_PANELS].a &&
+        off <= L->tab[co->id % HRM_TAU_PANELS].b)
+        lo = hi = co->id; /* the panel asked last: a march's next node */
+    if (off < L->tab[lo % HRM_TAU_PANELS].a) { /* forgotten: march again */
+        L->count = 0;
+        hrm__forget(L);
+        hrm__tau_at(c, L, off, tau);
+        return;
+    }
+    /* The panel holding off: the last one whose start is below it. */
+    while (lo < hi) {
+        long mid = lo + (hi - lo + 1) / 2;
+        if (L->tab[mid % HRM_TAU_PANELS].a < off) lo = mid;
+        else hi = mid - 1;
+    }
+    p = &L->tab[lo % HRM_TAU_PANELS];
+    co = &L->cache[L->last];
+    if (co->id != lo) {
+        int k;
+        for (k = 0; k < HRM__TCACHE && L->cache[k].id != lo; ++k) {}
+        if (k < HRM__TCACHE) {
+            L->last = k;
+            co = &L->cache[k];
+        } else {
+            /* rebuild from the same abscissae: the same values again */
+            hrm_real f[HRM__CH][HRM__CHEB + 1], dtau[HRM__CH], v[HRM__CH];
+            co = hrm__tcache_slot(L);
+            hrm__sigma_t_at(c, p->a, v);
+            for (i = 0; i < HRM__CH; ++i) f[i][0] = v[i];
+            hrm__tau_fit(c, L, p->a, p->b, p->deg, 0, p->tau_a, f, co, dtau);
+            co->id = lo;
+        }
+    }
+    xi = 2 * (off - p->a) / (p->b - p->a) - 1;
+    xi = xi < -1 ? -1 : xi > 1 ? 1 : xi;
+    hrm__cheb_eval((const hrm_real(*)[HRM__CH])co->e, p->deg, xi, tau);
+    for (i = 0; i < HRM__CH; ++i) {
+        hrm_real v = p->tau_a[i] + (p->b - p->a) / 2 * tau[i];
+        /* nondecreasing: within the panel's ends */
+        tau[i] = v < p->tau_a[i] ? p->tau_a[i] : v > p->tau_b[i] ? p->tau_b[i] : v;
+    }
+}
+
 /* The change of variable p -> s, as the offset s - t0 (full precision for
    short rays far from the origin) and ds/dp.
    none:        p = s - t0.
@@ -730,21 +1144,69 @@ static void hrm__map(hrm__ctx *c, hrm_real p, hrm_real *off, hrm_real *J)
     *J = j;
 }
 
-/* The smallest sigma_t over the channels at t0: the default sigma_ref of
-   the distance warp. Munoz 2014 s.5 takes the mean; the smallest keeps the
-   warped integrand bounded in every channel (a channel thinner than
-   sigma_ref grows like exp((sigma_ref - sigma_t) t) in u) and is the same
-   for a grey medium. One medium evaluation unless homogeneous. */
-static hrm_real hrm__sigma_min(hrm__ctx *c)
+/* How far the distance warp may reach: the offset x from t0 where the
+   thinnest channel's tau reaches `reach` (or the end, x = T), and that tau
+   there. Beyond x the medium's contribution is below exp(-reach) of the
+   largest S / sigma_t there. A homogeneous medium in closed form; a
+   transmittance callback by bisection; sigma callbacks by a coarse march
+   of the transmittance layer (medium evaluations, no source call). */
+static void hrm__tau_reach(hrm__ctx *c, hrm_real reach, hrm_real *x, hrm_real *tx)
 {
-    hrm_real sa[HRM__CH], ss[HRM__CH], v[HRM__CH], least;
-    int i;
-    if (c->homog)
-        memcpy(v, c->st, sizeof v);
-    else
-        c->stats.medium_evals += hrm__coeffs(c, c->t0, 0, 0, 1, sa, ss, v);
-    for (i = 0, least = v[0]; i < HRM__CH; ++i) least = v[i] < least ? v[i] : least;
-    return least;
+    hrm_real end = HRM__FINITE(c->T) ? c->T : HRM__R(1e30), tr[HRM__CH], least;
+    int i, k;
+    if (c->homog) {
+        for (i = 0, least = c->st[0]; i < HRM__CH; ++i) least = c->st[i] < least ? c->st[i] : least;
+        *x = least * end > reach ? reach / least : end;
+        *tx = least * *x;
+        return;
+    }
+    if (c->m->transmittance) {
+        /* the largest Tr over the channels at offset d (thinnest channel) */
+#define HRM__TR_MOST(d, most)                                                 \
+    do {                                                                      \
+        c->m->transmittance(c->m->user, c->t0, hrm__abscissa(c, d), tr);      \
+        hrm__check(c, tr, 2);                                                 \
+        c->stats.medium_evals++;                                              \
+        for (i = 0, most = tr[0]; i < HRM__CH; ++i) most = tr[i] > most ? tr[i] : most; \
+    } while (0)
+        hrm_real lo = 0, hi = HRM__FINITE(c->T) ? c->T : 1, most, limit = HRM_EXP(-reach);
+        HRM__TR_MOST(hi, most);
+        /* an infinite ray: double until it is reached */
+        for (k = 0; k < 100 && most > limit && !HRM__FINITE(c->T); ++k) {
+            lo = hi;
+            hi *= 2;
+            HRM__TR_MOST(hi, most);
+        }
+        if (most > limit || c->status != HRM_OK) { /* never reached */
+            *x = hi;
+            *tx = most > 0 ? -HRM_LOG(most) : reach;
+            return;
+        }
+        for (k = 0; k < 60 && hi - lo > HRM__R(1e-3) * hi && c->status == HRM_OK; ++k) {
+            hrm_real mid = (lo + hi) / 2;
+            HRM__TR_MOST(mid, most);
+            if (most > limit) lo = mid;
+            else hi = mid;
+        }
+#undef HRM__TR_MOST
+        *x = hi;
+        *tx = reach;
+        return;
+    }
+    {
+        hrm__tau *L = c->tau;
+        hrm__tau_init(L, end, HRM__R(1e-3));
+        for (k = 0; k < 4 * HRM_TAU_PANELS; ++k) {
+            const hrm__tpanel *p;
+            hrm__tau_march(c, L, hrm__tcache_slot(L));
+            p = &L->tab[(L->count - 1) % HRM_TAU_PANELS];
+            for (i = 0, least = p->tau_b[0]; i < HRM__CH; ++i)
+                least = p->tau_b[i] < least ? p->tau_b[i] : least;
+            *x = p->b;
+            *tx = least;
+            if (least >= reach || p->b >= end || c->status != HRM_OK) return;
+        }
+    }
 }
 
 /* The parameter range [pa, pb] of the warp, with its fallbacks. An
@@ -762,22 +1224,28 @@ static hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_warp *w)
     case HRM_WARP_NONE:
         break;
     case HRM_WARP_DISTANCE: {
-        hrm_real s = w->sigma_ref, thinnest = -1;
+        /* u resolves t only while 1 - u is well above epsilon: past
+           ln(2/eps) mean free paths of sigma_ref the ray is not sampled.
+           So sigma_ref never exceeds what the ray's own optical depth
+           allows: a finite ray that stays thinner than that is sampled to
+           its end (the end resolved to sqrt(eps) in u), and only where the
+           thinnest channel's Tr has fallen below eps/2 may the rest go.
+           sigma_ref = 0 takes the thinnest channel's mean extinction over
+           that reach. */
+        hrm_real s = w->sigma_ref, reach = HRM_LOG(2 / HRM__EPS), x, tx;
         hrm_real tiny = HRM__IS_FLOAT ? HRM__R(FLT_MIN) : HRM__R(DBL_MIN);
         if (!(HRM__FINITE(s) && s >= 0)) return HRM_ERR_BAD_WARP;
-        if (s == 0) s = thinnest = hrm__sigma_min(c);
+        if (s == 0 || inf || s * T > reach / 2) {
+            hrm_real cap;
+            hrm__tau_reach(c, reach, &x, &tx);
+            if (c->status != HRM_OK) return c->status;
+            cap = tx >= reach ? reach / x : reach / 2 / x;
+            if (s == 0) s = x > 0 ? tx / x : 0;
+            if (s > cap) s = cap;
+        }
         if (!(s >= tiny)) { /* zero or denormal: no warp */
             c->warp = HRM_WARP_NONE;
             break;
-        }
-        /* u resolves t only while 1 - u is well above epsilon. Past
-           ln(2/eps) mean free paths of sigma_ref the ray is dropped, which
-           is harmless where no channel is thinner than sigma_ref; otherwise
-           a finite ray lowers sigma_ref until all of it is integrated. */
-        if (!inf && s * T > -HRM_LOG(HRM__EPS) / 2) {
-            hrm_real cap = -HRM_LOG(HRM__EPS) / 2 / T;
-            if (thinnest < 0) thinnest = hrm__sigma_min(c);
-            if (thinnest < s) s = thinnest > cap ? thinnest : cap;
         }
         c->w_sigma = s;
         c->pb = inf ? 1 : -HRM_EXPM1(-s * T);
@@ -842,12 +1310,6 @@ static hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_warp *w)
     return HRM_OK;
 }
 
-static hrm_real hrm__abscissa(const hrm__ctx *c, hrm_real off)
-{
-    hrm_real s = c->t0 + off;
-    return s < c->t1 ? s : c->t1; /* t0 + (t1 - t0) may round past t1 */
-}
-
 /* Evaluate the medium and the source at parameter p: every callback at most
    once, absent terms never. */
 /* exp(-tau) at a node: the closed form evaluated with the node, else from
@@ -871,17 +1333,30 @@ static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
         memcpy(sa, c->sa, sizeof sa);
         memcpy(ss, c->ss, sizeof ss);
         memcpy(st, c->st, sizeof st);
-        if (c->closed)
-            for (i = 0; i < HRM__CH; ++i) pt->tr[i] = HRM_EXP(-c->st[i] * pt->off);
+        for (i = 0; i < HRM__CH; ++i) pt->tr[i] = HRM_EXP(-c->st[i] * pt->off);
     } else {
         int medium = hrm__coeffs(c, s, c->use_le && !c->per_length, c->use_li, c->need_st,
                                  sa, ss, st);
-        if (c->closed) {
+        if (c->decoupled) {
+            hrm_real tau[HRM__CH];
+            hrm__tau_at(c, c->tau, pt->off, tau);
+            for (i = 0; i < HRM__CH; ++i) pt->tr[i] = HRM_EXP(-tau[i]);
+        } else if (c->closed) {
             m->transmittance(m->user, c->t0, s, pt->tr);
             hrm__check(c, pt->tr, 2);
             medium = 1;
         }
         c->stats.medium_evals += medium;
+    }
+    if (c->coupled) {
+        /* Coupled tau: the rules integrate sigma_t - sbar in the warped
+           variable and sbar over the distance in t exactly, so a constant
+           sigma_t is exact under any warp. */
+        if (!c->have_sbar) {
+            memcpy(c->sbar, st, sizeof st);
+            c->have_sbar = 1;
+        }
+        for (i = 0; i < HRM__CH; ++i) st[i] -= c->sbar[i];
     }
 
     /* A term whose coefficient vanishes in every channel is not called:
@@ -958,7 +1433,7 @@ static hrm_real hrm__uniform(uint64_t *state)
 static void hrm__nodes(hrm__ctx *c, int N, int kind, hrm_real xi,
                        hrm_real L[HRM__CH], hrm_real tau[HRM__CH])
 {
-    hrm_real w = (c->pb - c->pa) / (hrm_real)N, x = 0, prev_p = c->pa;
+    hrm_real w = (c->pb - c->pa) / (hrm_real)N, x = 0, prev_p = c->pa, prev_off = 0;
     hrm_real prev_gs[HRM__CH];
     hrm__pt pt;
     int k, i;
@@ -976,19 +1451,24 @@ static void hrm__nodes(hrm__ctx *c, int N, int kind, hrm_real xi,
         }
         hrm__eval(c, p, &pt);
         for (i = 0; i < HRM__CH; ++i) {
-            if (!c->closed) {
+            if (c->coupled) {
                 hrm_real mean = k ? (prev_gs[i] + pt.gs[i]) / 2 : pt.gs[i];
-                tau[i] += mean * (p - prev_p);
+                tau[i] += mean * (p - prev_p) + c->sbar[i] * (pt.off - prev_off);
+                if (tau[i] < 0) tau[i] = 0;
                 prev_gs[i] = pt.gs[i];
             }
             L[i] += w * hrm__att(c, &pt, i, tau[i]) * pt.gq[i];
         }
         prev_p = p;
+        prev_off = pt.off;
         c->stats.steps++;
         if (c->status != HRM_OK) return;
     }
-    if (!c->closed)
-        for (i = 0; i < HRM__CH; ++i) tau[i] += prev_gs[i] * (c->pb - prev_p);
+    if (c->coupled)
+        for (i = 0; i < HRM__CH; ++i) {
+            tau[i] += prev_gs[i] * (c->pb - prev_p) + c->sbar[i] * (c->off_end - prev_off);
+            if (tau[i] < 0) tau[i] = 0;
+        }
 }
 
 /* Composite Simpson over N panels. Without a closed form, tau at the panel
@@ -1014,9 +1494,11 @@ static void hrm__simpson(hrm__ctx *c, int N, hrm_real L[HRM__CH], hrm_real tau[H
         hrm__eval(c, pr, &b);
         for (i = 0; i < HRM__CH; ++i) {
             hrm_real tm = 0, tb = 0, eb;
-            if (!c->closed) {
-                tb = tau[i] + H / 6 * (a.gs[i] + 4 * mid.gs[i] + b.gs[i]);
-                tm = tau[i] + H / 24 * (5 * a.gs[i] + 8 * mid.gs[i] - b.gs[i]);
+            if (c->coupled) {
+                tb = tau[i] + c->sbar[i] * (b.off - a.off) +
+                     H / 6 * (a.gs[i] + 4 * mid.gs[i] + b.gs[i]);
+                tm = tau[i] + c->sbar[i] * (mid.off - a.off) +
+                     H / 24 * (5 * a.gs[i] + 8 * mid.gs[i] - b.gs[i]);
                 if (tb < tau[i]) tb = tau[i];
                 if (tm < tau[i]) tm = tau[i];
                 if (tm > tb) tm = tb;
@@ -1100,6 +1582,7 @@ static int hrm__rk_step(hrm__ctx *c, const hrm__tableau *tb, const hrm__pt *star
     int i, j, n, end_stage = -1;
 
     HRM_ASSERT(tb->s <= HRM__MAX_STAGES);
+    hrm__fill(Y, HRM__NY, 0);
     for (i = 0; i < tb->s; ++i) {
         hrm_real ci = tb->c[i];
         sp[i] = 0;
@@ -1111,16 +1594,20 @@ static int hrm__rk_step(hrm__ctx *c, const hrm__tableau *tb, const hrm__pt *star
             sp[i] = &pts[i];
             if (ci == 1) end_stage = i;
         }
-        for (n = 0; n < HRM__NY; ++n) {
+        /* Stage values: the RTE form reads all of them, the optical-depth
+           form only tau, and only when tau is coupled (else Tr at the node
+           is known). */
+        for (n = 0; n < (c->rte ? HRM__NY : c->coupled ? HRM__CH : 0); ++n) {
             hrm_real acc = 0;
             for (j = 0; j < i; ++j) acc += tb->a[i * tb->s + j] * k[j][n];
             Y[n] = y[n] + h * acc;
-        }
-        /* tau never decreases along the march: keep stage values at or
-           above the step's start, whatever signs the tableau's a hold. */
-        if (!c->rte)
-            for (n = 0; n < HRM__CH; ++n)
+            if (!c->rte) {
+                /* sbar over the distance exactly; tau never decreases along
+                   the march, whatever signs the tableau's a hold */
+                Y[n] += c->sbar[n] * (sp[i]->off - start->off);
                 if (Y[n] < y[n]) Y[n] = y[n];
+            }
+        }
         hrm__deriv(c, sp[i], Y, k[i]);
     }
     for (n = 0; n < HRM__NY; ++n) {
@@ -1131,6 +1618,15 @@ static int hrm__rk_step(hrm__ctx *c, const hrm__tableau *tb, const hrm__pt *star
         }
         ynew[n] = y[n] + h * acc;
         if (err) err[n] = h * eacc;
+    }
+    if (c->coupled) {
+        hrm_real off_end, J;
+        if (end_stage >= 0) off_end = pts[end_stage].off;
+        else hrm__map(c, p_end, &off_end, &J);
+        for (n = 0; n < HRM__CH; ++n) {
+            ynew[n] += c->sbar[n] * (off_end - start->off);
+            if (ynew[n] < y[n]) ynew[n] = y[n];
+        }
     }
     if (end_stage >= 0) *end = pts[end_stage];
     return end_stage >= 0;
@@ -1187,6 +1683,11 @@ static void hrm__ivp_fixed(hrm__ctx *c, const hrm__tableau *tb, int ab4, int N,
                    can otherwise go negative in thick media. */
                 if (!c->rte && ((pos && inc < 0) || (neg && inc > 0))) inc = 0;
                 y[i] += inc;
+            }
+            if (c->coupled) {
+                hrm_real off_q, J;
+                hrm__map(c, q, &off_q, &J);
+                for (i = 0; i < HRM__CH; ++i) y[i] += c->sbar[i] * (off_q - start.off);
             }
         }
         c->stats.steps++;
@@ -1266,12 +1767,11 @@ static const hrm_real hrm__vr_bh[] = {13.0 / 160, 0, 2375.0 / 5984, 5.0 / 16, 12
                                       3.0 / 44, 0, 0};
 static const hrm_real hrm__vr_c[] = {0, 1.0 / 6, 4.0 / 15, 2.0 / 3, 5.0 / 6, 1, 1.0 / 15, 1};
 
-static const hrm__tableau hrm__pairs[5] = {
-    {4, 3, hrm__bs_a, hrm__bs_b, hrm__bs_c, hrm__bs_bh, 2},
-    {7, 5, hrm__dp_a, hrm__dp_b, hrm__dp_c, hrm__dp_bh, 4},
-    {6, 4, hrm__rkf_a, hrm__rkf_b, hrm__rkf_c, hrm__rkf_bh, 4},
-    {6, 4, hrm__ck_a, hrm__ck_b, hrm__ck_c, hrm__ck_bh, 4},
-    {8, 6, hrm__vr_a, hrm__vr_b, hrm__vr_c, hrm__vr_bh, 5}};
+static const hrm__tableau hrm__bs = {4, 3, hrm__bs_a, hrm__bs_b, hrm__bs_c, hrm__bs_bh, 2};
+static const hrm__tableau hrm__dp = {7, 5, hrm__dp_a, hrm__dp_b, hrm__dp_c, hrm__dp_bh, 4};
+static const hrm__tableau hrm__rkf = {6, 4, hrm__rkf_a, hrm__rkf_b, hrm__rkf_c, hrm__rkf_bh, 4};
+static const hrm__tableau hrm__ck = {6, 4, hrm__ck_a, hrm__ck_b, hrm__ck_c, hrm__ck_bh, 4};
+static const hrm__tableau hrm__vr = {8, 6, hrm__vr_a, hrm__vr_b, hrm__vr_c, hrm__vr_bh, 5};
 
 /* New evaluations of one step: the distinct nonzero nodes. */
 static int hrm__stage_cost(const hrm__tableau *tb)
@@ -1471,7 +1971,6 @@ static void hrm__ivp_adaptive(hrm__ctx *c, const hrm__tableau *tb, hrm_control c
 /* Adaptive quadrature                                                     */
 /* ---------------------------------------------------------------------- */
 
-#define HRM__MAX_DEPTH 60
 
 /* Nested Simpson (Munoz 2014 eq. 7): Simpson against the trapezoid rule on
    the same three points, e = |S - T|; a refused interval is halved and
@@ -1484,7 +1983,6 @@ typedef struct hrm__ns_iv {
     int depth;
 } hrm__ns_iv;
 
-#define HRM__NS_PANELS 32 /* initial panels at most */
 
 /* Simpson and trapezoid on one interval given tau at its left end:
    val = the increments of (tau, L), err = Simpson - trapezoid. */
@@ -1496,9 +1994,9 @@ static void hrm__ns_rule(const hrm__ctx *c, const hrm__pt *a, const hrm__pt *m,
     int i;
     for (i = 0; i < HRM__CH; ++i) {
         hrm_real ta = tau_a[i], tm = ta, tb = ta, fa, fm, fb;
-        if (!c->closed) {
-            tb = ta + H / 6 * (a->gs[i] + 4 * m->gs[i] + b->gs[i]);
-            tm = ta + H / 24 * (5 * a->gs[i] + 8 * m->gs[i] - b->gs[i]);
+        if (c->coupled) {
+            tb = ta + c->sbar[i] * (b->off - a->off) + H / 6 * (a->gs[i] + 4 * m->gs[i] + b->gs[i]);
+            tm = ta + c->sbar[i] * (m->off - a->off) + H / 24 * (5 * a->gs[i] + 8 * m->gs[i] - b->gs[i]);
             tb = tb < ta ? ta : tb;
             tm = hrm__clamp(tm, ta, tb);
         }
@@ -1506,7 +2004,9 @@ static void hrm__ns_rule(const hrm__ctx *c, const hrm__pt *a, const hrm__pt *m,
         fm = hrm__att(c, m, i, tm) * m->gq[i];
         fb = hrm__att(c, b, i, tb) * b->gq[i];
         val[i] = c->closed ? 0 : tb - ta;
-        err[i] = c->closed ? 0 : val[i] - H / 4 * (a->gs[i] + 2 * m->gs[i] + b->gs[i]);
+        /* sbar's part is exact in both rules: compare the rest */
+        err[i] = c->closed ? 0 : val[i] - c->sbar[i] * (b->off - a->off) -
+                                     H / 4 * (a->gs[i] + 2 * m->gs[i] + b->gs[i]);
         val[HRM__CH + i] = H / 6 * (fa + 4 * fm + fb);
         err[HRM__CH + i] = val[HRM__CH + i] - H / 4 * (fa + 2 * fm + fb);
     }
@@ -1514,13 +2014,13 @@ static void hrm__ns_rule(const hrm__ctx *c, const hrm__pt *a, const hrm__pt *m,
 
 static void hrm__nested_simpson(hrm__ctx *c, int panels, hrm_real acc[HRM__NY])
 {
-    hrm__ns_iv stack[HRM__MAX_DEPTH + 1], cur;
-    hrm__pt ini[2 * HRM__NS_PANELS + 1];
+    hrm__ns_iv stack[HRM_MAX_DEPTH + 1], cur;
+    hrm__pt ini[2 * HRM_NS_PANELS + 1];
     hrm_real span = c->pb - c->pa, val[HRM__NY], err[HRM__NY], tot[HRM__NY];
     int top = 0, k, i;
 
     /* The initial panels first: their coarse sum is the scale. */
-    if (panels > HRM__NS_PANELS) panels = HRM__NS_PANELS;
+    if (panels > HRM_NS_PANELS) panels = HRM_NS_PANELS;
     for (k = 0; k <= 2 * panels; ++k)
         hrm__eval(c, k == 2 * panels ? c->pb
                      : c->pa + span * ((hrm_real)k / (hrm_real)(2 * panels)), &ini[k]);
@@ -1546,9 +2046,9 @@ static void hrm__nested_simpson(hrm__ctx *c, int panels, hrm_real acc[HRM__NY])
             for (i = 0; i < HRM__NY; ++i) y1[i] = acc[i] + val[i];
             ratio = hrm__ratio(c, HRM_CONTROL_PI, cur.a.p, cur.b.p, acc, y1, err);
             split = ratio > 1 && !hrm__rough_ok(c, ratio, cur.parent, cur.a.p, cur.b.p, acc, y1, err);
-            if (split && (cur.depth >= HRM__MAX_DEPTH || HRM_FABS(H) / 2 < c->h_min)) {
+            if (split && (cur.depth >= HRM_MAX_DEPTH || HRM_FABS(H) / 2 < c->h_min)) {
                 if (hrm__ratio(c, HRM__JUMP, cur.a.p, cur.b.p, acc, y1, err) > 1)
-                    hrm__warn(c, cur.depth >= HRM__MAX_DEPTH ? HRM_WARN_STORAGE : HRM_WARN_H_MIN);
+                    hrm__warn(c, cur.depth >= HRM_MAX_DEPTH ? HRM_WARN_STORAGE : HRM_WARN_H_MIN);
                 split = 0;
             }
             if (split && c->stats.evals + 2 > c->max_evals) {
@@ -1579,23 +2079,6 @@ static void hrm__nested_simpson(hrm__ctx *c, int panels, hrm_real acc[HRM__NY])
     }
 }
 
-/* Gauss-Kronrod G7/K15 on [-1, 1]: the positive K15 nodes, their weights,
-   and the G7 weights of the nodes xgk[1], xgk[3], xgk[5], 0 (Piessens et
-   al. 1983, QUADPACK qk15). */
-static const hrm_real hrm__xgk[8] = {
-    0.991455371120812639206854697526329, 0.949107912342758524526189684047851,
-    0.864864423359769072789712788640926, 0.741531185599394439863864773280788,
-    0.586087235467691130294144845693013, 0.405845151377397166906606412076961,
-    0.207784955007898467600689403773245, 0};
-static const hrm_real hrm__wgk[8] = {
-    0.022935322010529224963732008058970, 0.063092092629978553290700663189204,
-    0.104790010322250183839876322541518, 0.140653259715525918745189590510238,
-    0.169004726639267902826583426598550, 0.190350578064785409913256402421014,
-    0.204432940075298892414161999234649, 0.209482141084727828012999174891714};
-static const hrm_real hrm__wg[4] = {
-    0.129484966168869693270611432679082, 0.279705391489276667901467771423780,
-    0.381830050505118944950369775488975, 0.417959183673469387755102040816327};
-
 /* tau at the K15 nodes from the same sigma_t samples, at the rule's own
    order: row k integrates the degree-14 interpolant of the 15 samples
    (nodes ascending) from -1 to node k. Derived from the nodes above by
@@ -1618,62 +2101,79 @@ static const hrm_real hrm__gk_tau[15 * 15] = {
     2.29115970609490190e-02, 6.31622655156741375e-02, 1.04674243689753713e-01, 1.40817773186961454e-01, 1.68785146780342205e-01, 1.90631315153053343e-01, 2.04083950446876189e-01, 2.09912182760747273e-01, 2.03900259354568153e-01, 1.91016579304918804e-01, 1.68159244468844088e-01, 1.41771675662672736e-01, 1.03162128389265362e-01, 6.59297925928097189e-02, 1.25372167533764223e-02,
 };
 
-/* The 15 nodes on [-1, 1] in ascending order, with Kronrod and Gauss
-   weights (0 off the Gauss nodes). */
-static void hrm__gk_node(int j, hrm_real *x, hrm_real *wk, hrm_real *wg)
-{
-    int i = j < 7 ? j : 14 - j; /* index into the positive half */
-    *x = j < 7 ? -hrm__xgk[i] : hrm__xgk[i];
-    *wk = hrm__wgk[i];
-    *wg = (i % 2 == 1) ? hrm__wg[i / 2] : (i == 7 ? hrm__wg[3] : 0);
-}
+/* Gauss-Kronrod G7/K15 on [-1, 1], the 15 nodes ascending with their
+   Kronrod weights and the Gauss weights (0 off the G7 nodes) (Piessens et
+   al. 1983, QUADPACK qk15). */
+static const hrm_real hrm__gk_x[15] = {
+    -0.991455371120812639206854697526329, -0.949107912342758524526189684047851, -0.864864423359769072789712788640926,
+    -0.741531185599394439863864773280788, -0.586087235467691130294144845693013, -0.405845151377397166906606412076961,
+    -0.207784955007898467600689403773245, 0, 0.207784955007898467600689403773245,
+    0.405845151377397166906606412076961, 0.586087235467691130294144845693013, 0.741531185599394439863864773280788,
+    0.864864423359769072789712788640926, 0.949107912342758524526189684047851, 0.991455371120812639206854697526329};
+static const hrm_real hrm__gk_wk[15] = {
+    0.022935322010529224963732008058970, 0.063092092629978553290700663189204, 0.104790010322250183839876322541518,
+    0.140653259715525918745189590510238, 0.169004726639267902826583426598550, 0.190350578064785409913256402421014,
+    0.204432940075298892414161999234649, 0.209482141084727828012999174891714, 0.204432940075298892414161999234649,
+    0.190350578064785409913256402421014, 0.169004726639267902826583426598550, 0.140653259715525918745189590510238,
+    0.104790010322250183839876322541518, 0.063092092629978553290700663189204, 0.022935322010529224963732008058970};
+static const hrm_real hrm__gk_wg[15] = {
+    0, 0.129484966168869693270611432679082, 0,
+    0.279705391489276667901467771423780, 0, 0.381830050505118944950369775488975,
+    0, 0.417959183673469387755102040816327, 0,
+    0.381830050505118944950369775488975, 0, 0.279705391489276667901467771423780,
+    0, 0.129484966168869693270611432679082, 0};
 
-/* K15 over [a, b] of y = (tau, L) given tau at a (tau_a; a closed form
-   ignores it). K receives the increments; ek the plain |K - G| (Munoz),
-   eq QUADPACK's estimate (scaled by the integrand's variation, at least 50
-   epsilons of the integral of |f|). */
+/* K15 over [a, b] of y = (tau, L) given tau at a (tau_a; ignored when Tr
+   at the nodes is known). K receives the increments; ek the plain |K - G|
+   (Munoz), eq QUADPACK's estimate (scaled by the integrand's variation, at
+   least 50 epsilons of the integral of |f|). */
 static void hrm__gk15(hrm__ctx *c, hrm_real a, hrm_real b, const hrm_real *tau_a,
                       hrm_real *K, hrm_real *ek, hrm_real *eq)
 {
     hrm__pt pt[15];
-    hrm_real hl = (b - a) / 2, mid = (a + b) / 2, x, wk, wg;
+    hrm_real hl = (b - a) / 2, mid = (a + b) / 2, off_a = 0, off_b = 0, J;
     int j, l, n;
 
-    for (j = 0; j < 15; ++j) {
-        hrm__gk_node(j, &x, &wk, &wg);
-        hrm__eval(c, j == 7 ? mid : mid + hl * x, &pt[j]);
+    for (j = 0; j < 15; ++j) hrm__eval(c, j == 7 ? mid : mid + hl * hrm__gk_x[j], &pt[j]);
+    if (c->coupled) {
+        hrm__map(c, a, &off_a, &J);
+        hrm__map(c, b, &off_b, &J);
     }
     for (n = 0; n < HRM__NY; ++n) {
         int ch = n % HRM__CH, is_tau = n < HRM__CH;
         hrm_real f[15], rk = 0, rg = 0, rabs = 0, rasc = 0, mean;
+        if (is_tau && !c->coupled) {
+            K[n] = ek[n] = eq[n] = 0;
+            continue;
+        }
         for (j = 0; j < 15; ++j) {
             if (is_tau) {
                 f[j] = pt[j].gs[ch];
-            } else {
+            } else if (c->coupled) {
+                /* tau at the node: the degree-14 interpolant of sigma_t - sbar
+                   integrated from a, and sbar over the distance */
                 hrm_real t = 0;
-                if (!c->closed) {
-                    for (l = 0; l < 15; ++l) t += hrm__gk_tau[j * 15 + l] * pt[l].gs[ch];
-                    t = tau_a[ch] + (t * hl > 0 ? t * hl : 0);
-                }
-                f[j] = hrm__att(c, &pt[j], ch, t) * pt[j].gq[ch];
+                for (l = 0; l < 15; ++l) t += hrm__gk_tau[j * 15 + l] * pt[l].gs[ch];
+                t = tau_a[ch] + c->sbar[ch] * (pt[j].off - off_a) + t * hl;
+                f[j] = HRM_EXP(-(t > tau_a[ch] ? t : tau_a[ch])) * pt[j].gq[ch];
+            } else {
+                f[j] = pt[j].tr[ch] * pt[j].gq[ch];
             }
-            hrm__gk_node(j, &x, &wk, &wg);
-            rk += wk * f[j];
-            rg += wg * f[j];
-            rabs += wk * HRM_FABS(f[j]);
+            rk += hrm__gk_wk[j] * f[j];
+            rg += hrm__gk_wg[j] * f[j];
+            rabs += hrm__gk_wk[j] * HRM_FABS(f[j]);
         }
         mean = rk / 2;
-        for (j = 0; j < 15; ++j) {
-            hrm__gk_node(j, &x, &wk, &wg);
-            rasc += wk * HRM_FABS(f[j] - mean);
-        }
+        for (j = 0; j < 15; ++j) rasc += hrm__gk_wk[j] * HRM_FABS(f[j] - mean);
         K[n] = rk * hl;
+        if (is_tau) K[n] += c->sbar[ch] * (off_b - off_a);
         ek[n] = HRM_FABS((rk - rg) * hl);
         eq[n] = ek[n];
         rasc *= HRM_FABS(hl);
         rabs *= HRM_FABS(hl);
         if (rasc != 0 && eq[n] != 0) {
-            hrm_real r = HRM_POW(200 * eq[n] / rasc, HRM__R(1.5));
+            hrm_real r = 200 * eq[n] / rasc;
+            r = r * HRM_SQRT(r); /* QUADPACK's (200 e / rasc)^1.5 */
             eq[n] = rasc * (r < 1 ? r : 1);
         }
         if (eq[n] < 50 * HRM__EPS * rabs) eq[n] = 50 * HRM__EPS * rabs;
@@ -1685,17 +2185,16 @@ static void hrm__gk15(hrm__ctx *c, hrm_real a, hrm_real b, const hrm_real *tau_a
    The initial intervals are integrated first, relative to tau at their own
    left ends (their sum is the scale); then intervals finish left to right,
    so tau at each left end is final. */
-#define HRM__GK_INITIAL 32 /* initial intervals at most */
 
 static void hrm__gk_local(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
 {
-    hrm_real stack_a[HRM__MAX_DEPTH + 2], stack_b[HRM__MAX_DEPTH + 2], stack_r[HRM__MAX_DEPTH + 2];
-    int stack_d[HRM__MAX_DEPTH + 2];
-    hrm_real K0[HRM__GK_INITIAL][HRM__NY], E0[HRM__GK_INITIAL][HRM__NY];
+    hrm_real stack_a[HRM_MAX_DEPTH + 2], stack_b[HRM_MAX_DEPTH + 2], stack_r[HRM_MAX_DEPTH + 2];
+    int stack_d[HRM_MAX_DEPTH + 2];
+    hrm_real K0[HRM_GK_INITIAL][HRM__NY], E0[HRM_GK_INITIAL][HRM__NY];
     hrm_real span = c->pb - c->pa, zero[HRM__NY], eq[HRM__NY], tot[HRM__NY];
     int top, k, i, ch;
 
-    if (n0 > HRM__GK_INITIAL) n0 = HRM__GK_INITIAL;
+    if (n0 > HRM_GK_INITIAL) n0 = HRM_GK_INITIAL;
     hrm__fill(zero, HRM__NY, 0);
     hrm__fill(tot, HRM__NY, 0);
     for (k = 0; k < n0; ++k) {
@@ -1735,9 +2234,9 @@ static void hrm__gk_local(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
             for (i = 0; i < HRM__NY; ++i) y1[i] = acc[i] + K[i];
             ratio = hrm__ratio(c, HRM_CONTROL_PI, a, b, acc, y1, ek);
             split = ratio > 1 && !hrm__rough_ok(c, ratio, parent, a, b, acc, y1, ek);
-            if (split && (d >= HRM__MAX_DEPTH || HRM_FABS(b - a) / 2 < c->h_min)) {
+            if (split && (d >= HRM_MAX_DEPTH || HRM_FABS(b - a) / 2 < c->h_min)) {
                 if (hrm__ratio(c, HRM__JUMP, a, b, acc, y1, ek) > 1)
-                    hrm__warn(c, d >= HRM__MAX_DEPTH ? HRM_WARN_STORAGE : HRM_WARN_H_MIN);
+                    hrm__warn(c, d >= HRM_MAX_DEPTH ? HRM_WARN_STORAGE : HRM_WARN_H_MIN);
                 split = 0;
             }
             if (split && c->stats.evals + reserve > c->max_evals) {
@@ -1767,16 +2266,15 @@ static void hrm__gk_local(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
    closed form each interval stores its integral relative to tau at its own
    left end, and the intervals are kept in order so that the factor
    exp(-tau(left end)) follows every refinement to their left. */
-#define HRM__GK_LIMIT 128
 typedef struct hrm__gk_iv {
     hrm_real a, b, K[HRM__NY], E[HRM__NY];
 } hrm__gk_iv;
 
 static void hrm__gk_global(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
 {
-    hrm__gk_iv iv[HRM__GK_LIMIT];
+    hrm__gk_iv iv[HRM_GK_INTERVALS];
     hrm_real zero[HRM__NY], span = c->pb - c->pa, ek[HRM__NY];
-    int n = n0 < HRM__GK_LIMIT ? n0 : HRM__GK_LIMIT, i, j, ch, roundoff = 0, stop = 0;
+    int n = n0 < HRM_GK_INTERVALS ? n0 : HRM_GK_INTERVALS, i, j, ch, roundoff = 0, stop = 0;
 
     hrm__fill(zero, HRM__NY, 0);
     for (i = 0; i < n; ++i) {
@@ -1829,7 +2327,7 @@ static void hrm__gk_global(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
                 pick = i;
             }
         }
-        if (n == HRM__GK_LIMIT) {
+        if (n == HRM_GK_INTERVALS) {
             hrm__warn(c, HRM_WARN_STORAGE);
             return;
         }
@@ -1885,15 +2383,29 @@ HRM__DEF const char *hrm_status_string(hrm_status status)
     }
 }
 
+/* The method table, one row a method in the enum's order, from the same
+   list as the enum: a method added at the end gets its own family. */
+typedef struct hrm__method_info {
+    const char *name;
+    int family;                /* HRM__FIXED_QUAD ... HRM__PAIR */
+    int steps;                 /* default steps, or initial panels/intervals */
+    double order;              /* on smooth integrands (Monte Carlo: 1/2) */
+    int rte;                   /* HRM_FORM_RTE applies (IVP solvers) */
+    const hrm__tableau *tb;    /* IVP solvers */
+} hrm__method_info;
+
+static const hrm__method_info hrm__methods[HRM_METHOD_COUNT] = {
+    {"default", HRM__FIXED_QUAD, 32, 4, 0, 0}, /* resolved to HRM_SIMPSON first */
+#define HRM__METHOD_INFO(name, text, family, steps, order, rte, tableau) \
+    {text, family, steps, order, rte, tableau},
+    HRM__METHOD_LIST(HRM__METHOD_INFO)
+#undef HRM__METHOD_INFO
+};
+
 HRM__DEF const char *hrm_method_name(hrm_method method)
 {
-    switch (method) {
-    case HRM_METHOD_DEFAULT: return "default";
-#define HRM__METHOD_CASE(name, text) case name: return text;
-        HRM__METHOD_LIST(HRM__METHOD_CASE)
-#undef HRM__METHOD_CASE
-    default: return "?";
-    }
+    if ((int)method < 0 || (int)method >= (int)HRM_METHOD_COUNT) return "?";
+    return hrm__methods[method].name;
 }
 
 HRM__DEF int hrm_version(void)
@@ -1906,13 +2418,14 @@ HRM__DEF hrm_options hrm_default_options(hrm_method method)
     hrm_options o;
     memset(&o, 0, sizeof o);
     o.method = method == HRM_METHOD_DEFAULT ? HRM_SIMPSON : method;
-    o.steps = o.method == HRM_NESTED_SIMPSON ? 4 : o.method == HRM_GAUSS_KRONROD ? 1
-            : o.method >= HRM_BOGACKI_SHAMPINE ? 0 : 32;
+    if ((int)o.method > 0 && (int)o.method < (int)HRM_METHOD_COUNT)
+        o.steps = hrm__methods[o.method].steps;
     o.form = HRM_FORM_OPTICAL_DEPTH;
     o.rtol = HRM__R(1e-4);
     o.max_evals = 100000;
     o.control = HRM_CONTROL_PI;
     o.gk_mode = HRM_GK_GLOBAL;
+    o.tau_mode = HRM_TAU_DECOUPLED;
     return o;
 }
 
@@ -1920,32 +2433,183 @@ HRM__DEF hrm_options hrm_default_options(hrm_method method)
 static hrm_status hrm__resolve(const hrm_options *in, hrm_options *o)
 {
     hrm_options d = hrm_default_options(in ? in->method : HRM_METHOD_DEFAULT);
+    const hrm__method_info *mi;
     if (!in) {
         *o = d;
-        return HRM_OK;
+        in = &d;
     }
     *o = *in;
     if ((int)o->method < 0 || (int)o->method >= (int)HRM_METHOD_COUNT) return HRM_ERR_BAD_METHOD;
     if (o->method == HRM_METHOD_DEFAULT) o->method = d.method;
+    mi = &hrm__methods[o->method];
     if (o->steps < 0) return HRM_ERR_BAD_STEPS;
     if (o->steps == 0) o->steps = d.steps;
     /* initial panels and intervals of the adaptive quadratures */
-    if (o->method == HRM_NESTED_SIMPSON && o->steps > HRM__NS_PANELS) o->steps = HRM__NS_PANELS;
-    if (o->method == HRM_GAUSS_KRONROD && o->steps > HRM__GK_INITIAL) o->steps = HRM__GK_INITIAL;
+    if (o->method == HRM_NESTED_SIMPSON && o->steps > HRM_NS_PANELS) o->steps = HRM_NS_PANELS;
+    if (o->method == HRM_GAUSS_KRONROD && o->steps > HRM_GK_INITIAL) o->steps = HRM_GK_INITIAL;
     if ((int)o->form < 0 || (int)o->form > (int)HRM_FORM_RTE) return HRM_ERR_BAD_OPTION;
     if (o->form == HRM_FORM_DEFAULT) o->form = HRM_FORM_OPTICAL_DEPTH;
     if ((int)o->control < 0 || (int)o->control > (int)HRM_CONTROL_GONTERMAN) return HRM_ERR_BAD_OPTION;
     if (o->control == HRM_CONTROL_DEFAULT) o->control = d.control;
     if ((int)o->gk_mode < 0 || (int)o->gk_mode > (int)HRM_GK_LOCAL) return HRM_ERR_BAD_OPTION;
     if (o->gk_mode == HRM_GK_DEFAULT) o->gk_mode = d.gk_mode;
+    if ((int)o->tau_mode < 0 || (int)o->tau_mode > (int)HRM_TAU_COUPLED) return HRM_ERR_BAD_OPTION;
+    if (o->tau_mode == HRM_TAU_DEFAULT) o->tau_mode = d.tau_mode;
     if (!(HRM__FINITE(o->rtol) && o->rtol >= 0 && HRM__FINITE(o->atol) && o->atol >= 0 &&
           HRM__FINITE(o->h_min) && o->h_min >= 0 && HRM__FINITE(o->h_max) && o->h_max >= 0 &&
-          HRM__FINITE(o->h0) && o->h0 >= 0 && o->max_evals >= 0))
+          HRM__FINITE(o->h0) && o->h0 >= 0 && o->max_evals >= 0 &&
+          HRM__FINITE(o->tau_tol) && o->tau_tol >= 0))
         return HRM_ERR_BAD_OPTION;
     if (o->h_max > 0 && o->h_min > o->h_max) return HRM_ERR_BAD_OPTION;
     if (o->rtol == 0) o->rtol = d.rtol;
     if (o->max_evals == 0) o->max_evals = d.max_evals;
+    /* tau's share of the error: a thirty-second of rtol, or for a fixed
+       step count 1/100 of N^-order, below the rule's own error at every N
+       on a unit-scale problem (its cost grows only like log(1/tau_tol)) */
+    if (o->tau_tol == 0)
+        o->tau_tol = mi->family == HRM__ADAPTIVE_QUAD || mi->family == HRM__PAIR
+                         ? o->rtol / 32
+                         : HRM__R(0.01 * pow((double)o->steps, -(o->method == HRM_RECTANGLE && o->jitter
+                                                                  ? 1 : mi->order)));
+    /* below a few dozen epsilons round-off in tau dominates any estimate */
+    if (o->tau_tol < 64 * HRM__EPS) o->tau_tol = 64 * HRM__EPS;
+    /* A budget below one step of the method could not be honoured. */
+    if (o->max_evals < (mi->family == HRM__PAIR ? hrm__stage_cost(mi->tb) + 1L
+                        : o->method == HRM_NESTED_SIMPSON ? 2L * o->steps + 1
+                        : o->method == HRM_GAUSS_KRONROD ? 15L * o->steps : 0L))
+        return HRM_ERR_BAD_OPTION;
     return HRM_OK;
+}
+
+/* The context of one solve: medium, flags, tolerances, the warp and the
+   step bounds. Returns an error, or HRM_OK with c ready to dispatch. */
+static hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, const hrm_medium *m, hrm_real t0,
+                             hrm_real t1, const hrm_options *o, int tr_only)
+{
+    const hrm__method_info *mi = &hrm__methods[o->method];
+    hrm_status st;
+    hrm_real P, big;
+    int i;
+
+    c->m = m;
+    c->t0 = t0;
+    c->t1 = t1;
+    c->T = t1 - t0;
+    c->rng = o->seed;
+    c->homog = (m->flags & HRM_MEDIUM_HOMOGENEOUS) != 0;
+    c->per_length = (m->flags & HRM_EMISSION_PER_LENGTH) != 0;
+    c->rte = o->form == HRM_FORM_RTE && mi->rte;
+    /* Tolerances: below 100 epsilons round-off dominates any estimate. */
+    c->rtol = o->rtol;
+    if (c->rtol < 100 * HRM__EPS &&
+        (mi->family == HRM__ADAPTIVE_QUAD || mi->family == HRM__PAIR)) {
+        c->rtol = 100 * HRM__EPS;
+        c->warning = HRM_WARN_RTOL_CLIPPED;
+    }
+    c->atol = o->atol;
+    c->max_evals = o->max_evals;
+    c->rough_left = HRM__JUMP;
+    if (c->homog) {
+        for (i = 0; i < HRM__CH; ++i) {
+            c->sa[i] = m->const_sigma_a[i];
+            c->ss[i] = m->const_sigma_s[i];
+            c->st[i] = c->sa[i] + c->ss[i];
+            if (!(HRM__FINITE(c->sa[i]) && HRM__FINITE(c->ss[i]) && c->sa[i] >= 0 &&
+                  c->ss[i] >= 0 && HRM__FINITE(c->st[i])))
+                return HRM_ERR_BAD_MEDIUM;
+        }
+    }
+    c->use_le = !tr_only && m->Le && (c->per_length || c->homog || m->sigma_a);
+    c->use_li = !tr_only && m->Li && (c->homog || m->sigma_s);
+    /* Tr at the nodes: a closed form where there is one (the RTE form
+       integrates Tr itself, so it takes sigma_t samples even then), else
+       the transmittance layer, else the rules' own tau. */
+    c->closed = c->homog || (m->transmittance && !c->rte);
+    c->decoupled = !c->closed && !c->rte && o->tau_mode == HRM_TAU_DECOUPLED;
+    c->closed |= c->decoupled;
+    c->coupled = !c->closed && !c->rte;
+    c->need_st = c->coupled || c->rte;
+    c->tau = layer;
+    hrm__tau_init(layer, HRM__FINITE(c->T) ? c->T : HRM__R(1e30), o->tau_tol);
+    if (t0 == t1) return HRM_OK;
+
+    {
+        /* tau alone is integrated in t: a warp only says where an
+           infinite ray ends */
+        hrm_warp none;
+        memset(&none, 0, sizeof none);
+        st = hrm__setup_warp(c, tr_only && HRM__FINITE(c->T) ? &none : &o->warp);
+    }
+    if (st == HRM_OK) st = c->status;
+    if (st != HRM_OK) return st;
+    c->off_end = c->s_end - c->t0;
+    hrm__tau_init(layer, c->off_end, o->tau_tol);
+
+    /* step bounds, in the parameter */
+    P = c->pb - c->pa;
+    c->h_max = o->h_max > 0 && o->h_max < P ? o->h_max : P;
+    big = HRM_FABS(c->pa) > HRM_FABS(c->pb) ? HRM_FABS(c->pa) : HRM_FABS(c->pb);
+    big = big > P ? big : P;
+    c->h_min = o->h_min > 0 ? o->h_min
+             : o->control == HRM_CONTROL_MUNOZ ? P / 1024 : 64 * HRM__EPS * big;
+    if (c->h_min > c->h_max) c->h_min = c->h_max;
+    return HRM_OK;
+}
+
+/* Run the method: y receives (tau, L), or (Tr, L) in the RTE form. */
+static void hrm__dispatch(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM__NY])
+{
+    const hrm__method_info *mi = &hrm__methods[o->method];
+    hrm__fill(y, HRM__NY, 0);
+    switch (mi->family) {
+    case HRM__FIXED_QUAD:
+        if (o->method == HRM_SIMPSON)
+            hrm__simpson(c, o->steps, y + HRM__CH, y);
+        else if (o->method == HRM_RECTANGLE)
+            hrm__nodes(c, o->steps, 0, o->jitter ? hrm__uniform(&c->rng) : HRM__R(0.5),
+                       y + HRM__CH, y);
+        else
+            hrm__nodes(c, o->steps, o->stratified ? 1 : 2, 0, y + HRM__CH, y);
+        break;
+    case HRM__FIXED_IVP:
+        hrm__ivp_fixed(c, mi->tb, o->method == HRM_ADAMS_BASHFORTH, o->steps, y);
+        break;
+    case HRM__ADAPTIVE_QUAD:
+        if (o->method == HRM_NESTED_SIMPSON)
+            hrm__nested_simpson(c, o->steps, y);
+        else if (o->gk_mode == HRM_GK_LOCAL)
+            hrm__gk_local(c, o->steps, y);
+        else
+            hrm__gk_global(c, o->steps, y);
+        break;
+    default:
+        hrm__ivp_adaptive(c, mi->tb, o->control, o->h0, y);
+    }
+}
+
+/* Tr(t0, t1) and the status: a closed form is exact in every method and
+   form, the layer's tau is the one the nodes saw. */
+static hrm_status hrm__finish(hrm__ctx *c, const hrm_real y[HRM__NY], hrm_real L[HRM__CH],
+                              hrm_real Tr[HRM__CH])
+{
+    int i;
+    memcpy(L, y + HRM__CH, sizeof(hrm_real) * HRM__CH);
+    if (c->decoupled) {
+        hrm__tau_at(c, c->tau, c->off_end, Tr);
+        for (i = 0; i < HRM__CH; ++i) Tr[i] = HRM_EXP(-Tr[i]);
+    } else if (c->homog || c->m->transmittance) {
+        hrm__closed_tr(c, Tr);
+    } else if (c->rte) {
+        memcpy(Tr, y, sizeof(hrm_real) * HRM__CH); /* y holds (Tr, L) */
+    } else {
+        for (i = 0; i < HRM__CH; ++i) Tr[i] = HRM_EXP(-y[i]);
+    }
+    if (c->status != HRM_OK) {
+        hrm__fill(L, HRM__CH, 0);
+        hrm__fill(Tr, HRM__CH, 1);
+        return c->status;
+    }
+    return c->warning;
 }
 
 /* The one solve behind hrm_solve and hrm_transmittance (tr_only: no
@@ -1955,153 +2619,31 @@ static hrm_status hrm__run(const hrm_medium *m, hrm_real t0, hrm_real t1,
                            hrm_real L[HRM__CH], hrm_real Tr[HRM__CH], hrm_stats *stats)
 {
     hrm__ctx c;
+    hrm__tau layer;
     hrm_options o;
-    hrm_real tau[HRM__CH], y[HRM__NY];
+    hrm_real y[HRM__NY];
     hrm_status st;
-    int i, ivp = 0;
 
     memset(&c, 0, sizeof c);
     memset(stats, 0, sizeof *stats);
     hrm__fill(L, HRM__CH, 0);
     hrm__fill(Tr, HRM__CH, 1);
-    hrm__fill(tau, HRM__CH, 0);
     /* t1 = +inf is valid under a warp that maps it to a finite end. */
     if (!HRM__FINITE(t0) || !(t1 >= t0) || (!HRM__FINITE(t1) && t0 == t1)) return HRM_ERR_BAD_INTERVAL;
     st = hrm__resolve(in, &o);
     if (st != HRM_OK) return st;
-
-    c.m = m;
-    c.t0 = t0;
-    c.t1 = t1;
-    c.T = t1 - t0;
-    c.rng = o.seed;
-    c.homog = (m->flags & HRM_MEDIUM_HOMOGENEOUS) != 0;
-    c.per_length = (m->flags & HRM_EMISSION_PER_LENGTH) != 0;
-    c.rte = o.form == HRM_FORM_RTE && o.method != HRM_RECTANGLE && o.method != HRM_SIMPSON &&
-            o.method != HRM_MONTE_CARLO && o.method != HRM_NESTED_SIMPSON &&
-            o.method != HRM_GAUSS_KRONROD;
-    /* Tolerances: below 100 epsilons round-off dominates any estimate. */
-    c.rtol = o.rtol;
-    if (c.rtol < 100 * HRM__EPS && o.method >= HRM_NESTED_SIMPSON) {
-        c.rtol = 100 * HRM__EPS;
-        c.warning = HRM_WARN_RTOL_CLIPPED;
-    }
-    c.atol = o.atol;
-    c.max_evals = o.max_evals;
-    c.rough_left = HRM__JUMP;
-    if (c.homog) {
-        for (i = 0; i < HRM__CH; ++i) {
-            c.sa[i] = m->const_sigma_a[i];
-            c.ss[i] = m->const_sigma_s[i];
-            if (!(HRM__FINITE(c.sa[i]) && HRM__FINITE(c.ss[i]) && c.sa[i] >= 0 && c.ss[i] >= 0))
-                return HRM_ERR_BAD_MEDIUM;
-            c.st[i] = c.sa[i] + c.ss[i];
-            if (!HRM__FINITE(c.st[i])) return HRM_ERR_BAD_MEDIUM;
-        }
-    }
-    c.use_le = !tr_only && m->Le && (c.per_length || c.homog || m->sigma_a);
-    c.use_li = !tr_only && m->Li && (c.homog || m->sigma_s);
-    /* The RTE form integrates Tr itself, so it takes sigma_t samples even
-       where a closed form exists. */
-    c.closed = c.homog || (m->transmittance && !c.rte);
-    c.need_st = !c.closed || c.rte;
-
-    /* A budget below one step of the method could not be honoured. */
-    if (o.max_evals < (o.method == HRM_NESTED_SIMPSON ? 2L * o.steps + 1
-                       : o.method == HRM_GAUSS_KRONROD ? 15L * o.steps
-                       : o.method >= HRM_BOGACKI_SHAMPINE
-                           ? hrm__stage_cost(&hrm__pairs[o.method - HRM_BOGACKI_SHAMPINE]) + 1L
-                           : 0L))
-        return HRM_ERR_BAD_OPTION;
-    if (t0 == t1) return HRM_OK;
-    st = hrm__setup_warp(&c, &o.warp);
-    if (st == HRM_OK) st = c.status;
-    if (st != HRM_OK) {
-        *stats = c.stats;
-        return st;
-    }
-    {   /* step bounds, in the parameter */
-        hrm_real P = c.pb - c.pa;
-        c.h_max = o.h_max > 0 && o.h_max < P ? o.h_max : P;
-        hrm_real big = HRM_FABS(c.pa) > HRM_FABS(c.pb) ? HRM_FABS(c.pa) : HRM_FABS(c.pb);
-        big = big > P ? big : P;
-        c.h_min = o.h_min > 0 ? o.h_min
-                : o.control == HRM_CONTROL_MUNOZ ? P / 1024 : 64 * HRM__EPS * big;
-        if (c.h_min > c.h_max) c.h_min = c.h_max;
-    }
-    if (!c.use_le && !c.use_li && c.closed) {
-        /* Nothing to integrate: only the closed-form Tr. */
-        hrm__closed_tr(&c, Tr);
-        *stats = c.stats;
-        if (c.status != HRM_OK) {
-            hrm__fill(Tr, HRM__CH, 1);
-            return c.status;
-        }
-        return HRM_OK;
-    }
-
-    switch (o.method) {
-    case HRM_RECTANGLE:
-        hrm__nodes(&c, o.steps, 0, o.jitter ? hrm__uniform(&c.rng) : HRM__R(0.5), L, tau);
-        break;
-    case HRM_MONTE_CARLO:
-        hrm__nodes(&c, o.steps, o.stratified ? 1 : 2, 0, L, tau);
-        break;
-    case HRM_SIMPSON:
-        hrm__simpson(&c, o.steps, L, tau);
-        break;
-    case HRM_EULER:
-    case HRM_RK4:
-    case HRM_ADAMS_BASHFORTH:
-        hrm__ivp_fixed(&c, o.method == HRM_EULER ? &hrm__euler : &hrm__rk4,
-                       o.method == HRM_ADAMS_BASHFORTH, o.steps, y);
-        ivp = 1;
-        break;
-    case HRM_NESTED_SIMPSON:
-    case HRM_GAUSS_KRONROD:
-        if (o.method == HRM_NESTED_SIMPSON)
-            hrm__nested_simpson(&c, o.steps, y);
-        else if (o.gk_mode == HRM_GK_LOCAL)
-            hrm__gk_local(&c, o.steps, y);
-        else
-            hrm__gk_global(&c, o.steps, y);
-        for (i = 0; i < HRM__CH; ++i) {
-            L[i] = y[HRM__CH + i];
-            tau[i] = y[i];
-        }
-        break;
-    case HRM_BOGACKI_SHAMPINE:
-    case HRM_DORMAND_PRINCE:
-    case HRM_FEHLBERG:
-    case HRM_CASH_KARP:
-    case HRM_VERNER:
-        hrm__ivp_adaptive(&c, &hrm__pairs[o.method - HRM_BOGACKI_SHAMPINE], o.control, o.h0, y);
-        ivp = 1;
-        break;
-    default:
-        return HRM_ERR_BAD_METHOD;
-    }
-
-    if (ivp) {
-        for (i = 0; i < HRM__CH; ++i) {
-            L[i] = y[HRM__CH + i];
-            tau[i] = y[i];
-        }
-    }
-    if (c.homog || m->transmittance) {
-        hrm__closed_tr(&c, Tr); /* exact in every method and form */
-    } else if (c.rte) {
-        for (i = 0; i < HRM__CH; ++i) Tr[i] = tau[i]; /* y holds (Tr, L) */
-    } else {
-        for (i = 0; i < HRM__CH; ++i) Tr[i] = HRM_EXP(-tau[i]);
-    }
+    st = hrm__setup(&c, &layer, m, t0, t1, &o, tr_only);
     *stats = c.stats;
-    if (c.status != HRM_OK) {
-        hrm__fill(L, HRM__CH, 0);
-        hrm__fill(Tr, HRM__CH, 1);
-        return c.status;
+    if (st != HRM_OK || t0 == t1) return st;
+    if (!c.use_le && !c.use_li && c.closed) {
+        /* Nothing to integrate: Tr alone, from the layer or a closed form. */
+        hrm__fill(y, HRM__NY, 0);
+    } else {
+        hrm__dispatch(&c, &o, y);
     }
-    return c.warning;
+    st = hrm__finish(&c, y, L, Tr);
+    *stats = c.stats;
+    return st;
 }
 
 HRM__DEF hrm_status hrm_equiangular_warp(const hrm_real origin[3], const hrm_real dir[3],

@@ -340,14 +340,15 @@ static void ad_tableaus(void)
     const size_t len_c[5] = { sizeof hrm__bs_c, sizeof hrm__dp_c, sizeof hrm__rkf_c,
                               sizeof hrm__ck_c, sizeof hrm__vr_c };
     int p;
-    CHECK_INT(sizeof hrm__pairs / sizeof hrm__pairs[0], 5, "hrm__pairs holds the five pairs");
     for (p = 0; p < 5; ++p) {
-        const hrm__tableau *tb = &hrm__pairs[p];
+        const hrm__tableau *tb = hrm__methods[HRM_BOGACKI_SHAMPINE + p].tb;
         int s = tb->s, i, j, l, w, q;
         double sum_b = 0, sum_bh = 0, mag_b = 0, mag_bh = 0, worst_row = 0, worst_mag = 0;
-        /* the pair is HRM_BOGACKI_SHAMPINE + p, as hrm__run indexes it */
+        /* the method table's row of HRM_BOGACKI_SHAMPINE + p is that pair */
+        CHECK(hrm__methods[HRM_BOGACKI_SHAMPINE + p].family == HRM__PAIR,
+              "%s: the method table's family is the embedded pairs", info[p].name);
         CHECK(tb->a == named_a[p] && tb->b == named_b[p] && tb->bh == named_bh[p] &&
-              tb->c == named_c[p], "%s: hrm__pairs[%d] points at its own tables", info[p].name, p);
+              tb->c == named_c[p], "%s: the method table points at its own tables", info[p].name);
         CHECK_INT(s, info[p].s, "%s: stages", info[p].name);
         CHECK_INT(len_a[p], sizeof(hrm_real) * (size_t)(s * s), "%s: a is s x s", info[p].name);
         CHECK_INT(len_c[p], sizeof(hrm_real) * (size_t)s, "%s: c has s nodes", info[p].name);
@@ -449,11 +450,9 @@ static void ad_gk_tables(void)
     double sharp_k, sharp_g, tol_rule, tol_tau;
     int j, k, l, ascending = 1, symmetric = 1, gauss_nodes = 0;
     for (j = 0; j < 15; ++j) {
-        hrm_real xr, wkr, wgr;
-        hrm__gk_node(j, &xr, &wkr, &wgr);
-        x[j] = (double)xr;
-        wk[j] = (double)wkr;
-        wg[j] = (double)wgr;
+        x[j] = (double)hrm__gk_x[j];
+        wk[j] = (double)hrm__gk_wk[j];
+        wg[j] = (double)hrm__gk_wg[j];
         gauss_nodes += wg[j] != 0.0;
     }
     for (j = 0; j < 15; ++j) {
