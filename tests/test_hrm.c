@@ -40,6 +40,7 @@
    next to its bound. */
 #define HRM_IMPLEMENTATION
 #include "hrm.h"
+#define HARNESS_IMPLEMENTATION
 #include "harness.h"
 
 #include <float.h>
