@@ -1,4 +1,5 @@
-/* test_hrm.c - the test suite of hrm.h.
+/* test_fixed.c - the tests of hrm.h's interface and of its fixed-step
+   methods; fixed_tests() runs every group.
 
    Every numerical check compares with a closed form (or, for Monte Carlo
    variances, an independent high-accuracy quadrature in double) and states
@@ -16,7 +17,7 @@
    1e-12 and never matters. Order fits use only the N whose error is well
    above round-off (> 1e-5 relative under float, > 1e-11 under double).
 
-   Groups (main() runs them in this order):
+   Groups (in the order fixed_tests() runs them):
      test_names               status strings, method names, version
      test_defaults            options NULL / all-zero / hrm_default_options
      test_empty_interval      t0 == t1
@@ -38,10 +39,7 @@
 
    Set HRM_TEST_VERBOSE=1 in the environment to print every measured error
    next to its bound. */
-#define HRM_IMPLEMENTATION
-#include "hrm.h"
-#define HARNESS_IMPLEMENTATION
-#include "harness.h"
+#include "common.h"
 
 #include <float.h>
 #include <math.h>
@@ -2143,11 +2141,7 @@ static void test_names(void)
     CHECK_INT(hrm_version(), 100, "version 0.1.0 as the top comment says");
 }
 
-/* Adaptive methods and warps, in their own files (static functions only). */
-#include "test_adaptive.h"
-#include "test_warp.h"
-
-int main(void)
+void fixed_tests(void)
 {
     RUN_GROUP(test_names);
     RUN_GROUP(test_defaults);
@@ -2165,7 +2159,4 @@ int main(void)
     RUN_GROUP(test_thick);
     RUN_GROUP(test_rte_stiffness);
     RUN_GROUP(test_rte_closed_form_tr);
-    adaptive_tests();
-    warp_tests();
-    return harness_summary();
 }

@@ -1,10 +1,8 @@
-/* test_warp.h - tests of hrm.h's importance-sampling warps (a change of
+/* test_warp.c - tests of hrm.h's importance-sampling warps (a change of
    variable t = t(u) under every method): none, distance, equiangular (and
    hrm_equiangular_warp), user; infinite rays; the documented fallbacks.
 
-   Included at the end of test_hrm.c, after hrm.h (with HRM_IMPLEMENTATION)
-   and harness.h; its entry point warp_tests() runs every group. Every name
-   here starts with wp_ / WP_.
+   warp_tests() runs every group.
 
    References are computed in double whatever HRM_REAL is, from closed
    forms or from an independent composite Gauss-Legendre quadrature (nodes
@@ -24,7 +22,7 @@
      Monte Carlo              5 sd / sqrt(N), sd^2 = P int (g - mean)^2
                               (uniform; one sample per stratum has a
                               smaller variance, so the bound holds too)
-     adaptive methods         10 rtol |L| (see test_adaptive.h)
+     adaptive methods         10 rtol |L| (see test_adaptive.c)
    M_k is twice the largest k-th divided difference of g on a 600-point
    grid in double (each divided difference is g^(k) at a point between its
    nodes, so the grid samples g^(k) densely; the factor 2 covers the
@@ -32,10 +30,9 @@
    N is chosen per case so that the bound is below 2% of L (Euler 10%,
    Monte Carlo 15%): the check can fail.
    Round-off: every bound gets 8 eps (n + 16)(1 + tau) relative, n the
-   steps taken (test_hrm.c's floor times 8 for the warp's map, which adds a
+   steps taken (test_fixed.c's floor times 8 for the warp's map, which adds a
    few roundings per sample; it matters under float only). */
-#ifndef HRM_TEST_WARP_H
-#define HRM_TEST_WARP_H
+#include "common.h"
 
 #include <float.h>
 #include <math.h>
@@ -1634,7 +1631,7 @@ static void wp_rte_vs_od(void)
 
 /* ======================================================================== */
 
-static void warp_tests(void)
+void warp_tests(void)
 {
     RUN_GROUP(wp_every_method);
     RUN_GROUP(wp_exact_distance);
@@ -1647,4 +1644,3 @@ static void warp_tests(void)
     RUN_GROUP(wp_rte_vs_od);
 }
 
-#endif /* HRM_TEST_WARP_H */
