@@ -12,7 +12,7 @@ configs=0
 
 # The test program: several translation units, each including hrm.h; only
 # test_tables.c compiles the implementation (every file with HRM_STATIC).
-SRCS="tests/main.c tests/test_tables.c tests/test_fixed.c tests/test_adaptive.c tests/test_warp.c"
+SRCS="tests/main.c tests/common.c tests/test_tables.c tests/test_fixed.c tests/test_adaptive.c tests/test_warp.c"
 
 # run NAME COMPILER FLAGS... : build the test program and run it
 run() {

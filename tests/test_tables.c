@@ -11,11 +11,6 @@
 
 #include <float.h>
 #include <math.h>
-#include <stddef.h>
-
-static int ad_is_float(void) { return sizeof(hrm_real) == sizeof(float); }
-
-static double ad_eps(void) { return ad_is_float() ? (double)FLT_EPSILON : DBL_EPSILON; }
 
 /* ========================================================================
    1. Runge-Kutta tableaus: consistency and order conditions
@@ -27,7 +22,7 @@ static double ad_eps(void) { return ad_is_float() ? (double)FLT_EPSILON : DBL_EP
    is rounded to 6e-8 relative, so 4 FLT_EPSILON times the magnitudes. */
 static double ad_coef_tol(double magnitude)
 {
-    return ad_is_float() ? 4 * (double)FLT_EPSILON * (magnitude + 1) : 1e-14;
+    return real_is_float() ? 4 * (double)FLT_EPSILON * (magnitude + 1) : 1e-14;
 }
 
 /* The same for the products of the order conditions: 4 eps times the sum
@@ -35,7 +30,7 @@ static double ad_coef_tol(double magnitude)
    rounds once). */
 static double ad_prod_tol(double magnitude)
 {
-    return 4 * ad_eps() * (magnitude + 1);
+    return 4 * real_eps() * (magnitude + 1);
 }
 
 static void ad_tableaus(void)
@@ -195,7 +190,7 @@ static void ad_gk_tables(void)
         if (fabs(sk - want) > worst_k) worst_k = fabs(sk - want);
         if (k <= 13 && fabs(sg - want) > worst_g) worst_g = fabs(sg - want);
     }
-    tol_rule = ad_is_float() ? 8 * 23 * (double)FLT_EPSILON : 1e-14;
+    tol_rule = real_is_float() ? 8 * 23 * (double)FLT_EPSILON : 1e-14;
     CHECK_NEAR(worst_k, 0, tol_rule, "K15 integrates x^k exactly on [-1, 1] for k <= 22");
     CHECK_NEAR(worst_g, 0, tol_rule, "G7 integrates x^k exactly on [-1, 1] for k <= 13");
     /* ... and no further (the degrees are sharp): the first even power past
@@ -208,7 +203,7 @@ static void ad_gk_tables(void)
     }
     sharp_k = fabs(sharp_k - 2.0 / 25);
     sharp_g = fabs(sharp_g - 2.0 / 15);
-    if (!ad_is_float()) { /* float's bound is above K15's x^24 error */
+    if (!real_is_float()) { /* float's bound is above K15's x^24 error */
         CHECK(sharp_k > 100 * tol_rule, "K15 is not exact for x^24 (error %.3g)", sharp_k);
         CHECK(sharp_g > 100 * tol_rule, "G7 is not exact for x^14 (error %.3g)", sharp_g);
     }
@@ -227,7 +222,7 @@ static void ad_gk_tables(void)
             v = fabs(v - ad_mono_int(k, x[j]));
             if (v > worst_tau) worst_tau = v;
         }
-    tol_tau = ad_is_float() ? 4 * 15 * 15 * (double)FLT_EPSILON : 1e-13;
+    tol_tau = real_is_float() ? 4 * 15 * 15 * (double)FLT_EPSILON : 1e-13;
     CHECK_NEAR(worst_tau, 0, tol_tau,
                "hrm__gk_tau row j integrates x^k from -1 to node j exactly, k <= 14");
     /* the last row is the whole K15 rule's integral only up to x[14] < 1:
