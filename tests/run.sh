@@ -53,6 +53,9 @@ run gxx-O2              g++     -x c++ -std=c++11 -O2 $WARN
 run clangxx-O0-float    clang++ -x c++ -std=c++11 -O0 $WARN -DHRM_REAL=float
 run gcc-static-O2       gcc   -std=c99 -O2 $WARN -DHRM_STATIC
 run clang-asan-ubsan    clang -std=c99 -O1 -g $WARN -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+run gcc-c99-O2-ch1      gcc   -std=c99 -O2 $WARN -DHRM_CHANNELS=1
+run gcc-c99-O2-ch1-float gcc  -std=c99 -O2 $WARN -DHRM_CHANNELS=1 -DHRM_REAL=float
+run clang-c99-O2-ch8    clang -std=c99 -O2 $WARN -DHRM_CHANNELS=8
 
 # Implementation compiled as C, used from C++: the extern "C" linkage pair.
 configs=$((configs + 1))

@@ -925,8 +925,9 @@ static void wp_distance_edges(void)
                 if (!(d <= worst)) worst = d;
             }
             /* u = 1 - e^{-sigma s} ~ sigma s: the identity up to a relative
-               O(sigma T) and the roundings of the map (8 eps per sample) */
-            CHECK(worst <= wp_floor(rn.stats.evals, sig_t_hom(&sc, 2) * (t1 - t0)) +
+               O(sigma T) and the roundings of the map (8 eps per sample),
+               at the optical depth of the thickest channel */
+            CHECK(worst <= wp_floor(rn.stats.evals, max_tau(&p, t0, t1)) +
                                (is_adaptive(meth) ? 20 * wp_rtol() : 0),
                   "%s: sigma_ref = smallest normal: L as without a warp (%.3g)",
                   hrm_method_name(meth), worst);
@@ -1190,9 +1191,10 @@ static void wp_equiangular_edges(void)
            in wp_every_method; closed form sigma_s E / sigma_t (1 -
            e^{-sigma_t T})):
            v = 0, 1: [0, 1e6] in a thin medium, sigma_t = 1e-5, 2e-5, 3e-5
-           (tau = 10 ... 30: the light comes from all of the ray), under the
-           distance warp with sigma_ref = 1e-5 (in u the integrand is a
-           polynomial of degree 0, 1, 2) and without a warp;
+           (repeating over further channels; tau = 10 ... 30: the light
+           comes from all of the ray), under the distance warp with
+           sigma_ref = 1e-5 (in u the integrand is a polynomial of degree
+           0, 1, 2: integer multiples keep it one) and without a warp;
            v = 2..4: [1e6, 1e6 + 1e-9] (float: + 0.25, t being resolved to
            0.0625 there) with sigma_ref 0.5, the default, and no warp: the
            map works on offsets from t0, so nothing is lost to t0's
@@ -1213,8 +1215,8 @@ static void wp_equiangular_edges(void)
             pc = wp_scene_init(&cs, LIGHT_CONST);
             if (longray)
                 for (c = 0; c < NCH; ++c) {
-                    cs.sig_a[c] = 0.4e-5 * (c + 1);
-                    cs.sig_s[c] = 0.6e-5 * (c + 1);
+                    cs.sig_a[c] = 0.4e-5 * (1 + c % 3);
+                    cs.sig_s[c] = 0.6e-5 * (1 + c % 3);
                 }
             if (sref == 0) {
                 for (c = 0; c < NCH; ++c) sref += sig_t_hom(&cs, c);
