@@ -1343,8 +1343,14 @@ static void hrm__map(hrm__ctx *c, hrm_real p, hrm_real *off, hrm_real *J)
    there. Beyond x the medium's contribution is below exp(-reach) of the
    largest S / sigma_t there. A homogeneous medium in closed form; a
    transmittance callback by bisection; sigma callbacks by a coarse march
-   of the transmittance layer (medium evaluations, no source call). */
-static void hrm__tau_reach(hrm__ctx *c, hrm_real reach, hrm_real *x, hrm_real *tx)
+   of the transmittance layer (medium evaluations, no source call).
+   lowest: the thinnest channel's lowest running mean tau(s)/s over the
+   second half of that reach, a sigma_ref that an infinite ray's tail,
+   which nobody measured, is least likely to be thinner than (a channel
+   thinner than sigma_ref far out makes the warped integrand singular at
+   u = 1). */
+static void hrm__tau_reach(hrm__ctx *c, hrm_real reach, hrm_real *x, hrm_real *tx,
+                           hrm_real *lowest)
 {
     hrm_real end = HRM__FINITE(c->T) ? c->T : HRM__R(1e30), tr[HRM__CH], least;
     int i, k;
@@ -1352,6 +1358,7 @@ static void hrm__tau_reach(hrm__ctx *c, hrm_real reach, hrm_real *x, hrm_real *t
         for (i = 0, least = c->st[0]; i < HRM__CH; ++i) least = c->st[i] < least ? c->st[i] : least;
         *x = least * end > reach ? reach / least : end;
         *tx = least * *x;
+        *lowest = least;
         return;
     }
     if (c->m->transmittance) {
@@ -1374,6 +1381,7 @@ static void hrm__tau_reach(hrm__ctx *c, hrm_real reach, hrm_real *x, hrm_real *t
         if (most > limit || c->status != HRM_OK) { /* never reached */
             *x = hi;
             *tx = most > 0 ? -HRM_LOG(most) : reach;
+            *lowest = *tx / *x;
             return;
         }
         for (k = 0; k < 60 && hi - lo > HRM__R(1e-3) * hi && c->status == HRM_OK; ++k) {
@@ -1382,13 +1390,20 @@ static void hrm__tau_reach(hrm__ctx *c, hrm_real reach, hrm_real *x, hrm_real *t
             if (most > limit) lo = mid;
             else hi = mid;
         }
-#undef HRM__TR_MOST
         *x = hi;
         *tx = reach;
+        *lowest = reach / hi;
+        for (k = 2; k <= 3; ++k) { /* the running mean at x/2 and 3x/4 */
+            hrm_real d = hi * (hrm_real)k / 4;
+            HRM__TR_MOST(d, most);
+            if (most > 0 && -HRM_LOG(most) / d < *lowest) *lowest = -HRM_LOG(most) / d;
+        }
+#undef HRM__TR_MOST
         return;
     }
     {
         hrm__tau *L = c->tau;
+        *lowest = -1;
         hrm__tau_init(L, end, HRM__R(1e-3));
         for (k = 0; k < 4 * HRM_TAU_PANELS; ++k) {
             const hrm__tpanel *p;
@@ -1398,8 +1413,28 @@ static void hrm__tau_reach(hrm__ctx *c, hrm_real reach, hrm_real *x, hrm_real *t
                 least = p->tau_b[i] < least ? p->tau_b[i] : least;
             *x = p->b;
             *tx = least;
-            if (least >= reach || p->b >= end || c->status != HRM_OK) return;
+            if (least >= reach / 2 && (*lowest < 0 || least / p->b < *lowest)) *lowest = least / p->b;
+            if (c->status != HRM_OK) return;
+            if (least >= reach) {
+                /* where in the panel: bisection on its interpolant (its
+                   coefficients are cached, no medium evaluation) */
+                hrm_real lo = p->a, hi = p->b, tau[HRM__CH];
+                int it;
+                for (it = 0; it < 100 && hi - lo > 4 * HRM__EPS * hi; ++it) {
+                    hrm_real mid = lo + (hi - lo) / 2;
+                    hrm__tau_at(c, L, mid, tau);
+                    for (i = 0, least = tau[0]; i < HRM__CH; ++i) least = tau[i] < least ? tau[i] : least;
+                    if (least >= reach) hi = mid;
+                    else lo = mid;
+                }
+                *x = hi;
+                *tx = reach;
+                if (*lowest < 0 || reach / hi < *lowest) *lowest = reach / hi;
+                return;
+            }
+            if (p->b >= end) break;
         }
+        if (*lowest < 0) *lowest = *x > 0 ? *tx / *x : 0;
     }
 }
 
@@ -1426,14 +1461,15 @@ static hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_warp *w)
            thinnest channel's Tr has fallen below eps/2 may the rest go.
            sigma_ref = 0 takes the thinnest channel's mean extinction over
            that reach. */
-        hrm_real s = w->sigma_ref, reach = HRM_LOG(2 / HRM__EPS), x, tx;
+        hrm_real s = w->sigma_ref, reach = HRM_LOG(2 / HRM__EPS), x, tx, lowest;
         hrm_real tiny = HRM__IS_FLOAT ? HRM__R(FLT_MIN) : HRM__R(DBL_MIN);
         if (!(HRM__FINITE(s) && s >= 0)) return HRM_ERR_BAD_WARP;
         if (s == 0 || inf || s * T > reach / 2) {
             hrm_real cap;
-            hrm__tau_reach(c, reach, &x, &tx);
+            hrm__tau_reach(c, reach, &x, &tx, &lowest);
             if (c->status != HRM_OK) return c->status;
             cap = tx >= reach ? reach / x : reach / 2 / x;
+            if (inf && lowest < cap) cap = lowest;
             if (s == 0) s = x > 0 ? tx / x : 0;
             if (s > cap) s = cap;
         }
@@ -1746,9 +1782,42 @@ static void hrm__deriv(const hrm__ctx *c, const hrm__pt *pt, const hrm_real *y, 
    Stages sharing a node share one evaluation; the sample at p_end (a node
    c = 1) is returned in *end so that the next step reuses it: the result
    says whether it did. err (optional) receives h * sum (b_i - bh_i) k_i. */
+/* The distinct nodes of a tableau in ascending order (the first stage at
+   each), and W = the integral over [0, 1] of |prod (c - c_i)| over all but
+   the last of them: the weight of the top term of the Newton series of
+   the stage values (see hrm__rk_step). */
+typedef struct hrm__nodes_info {
+    int m, stage[HRM__MAX_STAGES];
+    hrm_real c[HRM__MAX_STAGES], W;
+} hrm__nodes_info;
+
+static void hrm__nodes_init(const hrm__tableau *tb, hrm__nodes_info *ni)
+{
+    int i, j, k;
+    ni->m = 0;
+    for (i = 0; i < tb->s; ++i) {
+        for (j = 0; j < ni->m && ni->c[j] != tb->c[i]; ++j) {}
+        if (j < ni->m) continue;
+        for (k = ni->m; k > 0 && ni->c[k - 1] > tb->c[i]; --k) {
+            ni->c[k] = ni->c[k - 1];
+            ni->stage[k] = ni->stage[k - 1];
+        }
+        ni->c[k] = tb->c[i];
+        ni->stage[k] = i;
+        ni->m++;
+    }
+    ni->W = 0;
+    for (i = 0; i < 256; ++i) { /* midpoint rule: W needs no precision */
+        hrm_real x = ((hrm_real)i + HRM__R(0.5)) / 256, pr = 1;
+        for (k = 0; k + 1 < ni->m; ++k) pr *= x - ni->c[k];
+        ni->W += HRM_FABS(pr) / 256;
+    }
+}
+
 static int hrm__rk_step(hrm__ctx *c, const hrm__tableau *tb, const hrm__pt *start,
                         hrm__pt *end, hrm_real p, hrm_real p_end,
-                        const hrm_real *y, hrm_real *ynew, hrm_real *err)
+                        const hrm_real *y, hrm_real *ynew, hrm_real *err,
+                        const hrm__nodes_info *ni, hrm_real *both)
 {
     hrm__pt pts[HRM__MAX_STAGES];
     const hrm__pt *sp[HRM__MAX_STAGES];
@@ -1794,6 +1863,26 @@ static int hrm__rk_step(hrm__ctx *c, const hrm__tableau *tb, const hrm__pt *star
         ynew[n] = y[n] + h * acc;
         if (err) err[n] = h * eacc;
     }
+    if (err && ni) {
+        /* A second opinion on the step, which an embedded pair cannot
+           give where both of its solutions are wrong alike (a step over a
+           light's peak): the stage values of L' at the distinct nodes have
+           a Newton interpolation series whose top term, integrated over
+           the step, must be small if the step resolves the integrand.
+           both: the larger of it and the pair's estimate. (At a jump the
+           series does not converge at any step: there the pair's own
+           estimate judges a rough step.) */
+        memcpy(both, err, sizeof(hrm_real) * HRM__NY);
+        for (n = HRM__CH; n < HRM__NY; ++n) {
+            hrm_real d[HRM__MAX_STAGES], top;
+            for (i = 0; i < ni->m; ++i) d[i] = k[ni->stage[i]][n];
+            for (j = 1; j < ni->m; ++j)
+                for (i = ni->m - 1; i >= j; --i)
+                    d[i] = (d[i] - d[i - 1]) / (ni->c[i] - ni->c[i - j]);
+            top = HRM_FABS(h * d[ni->m - 1]) * ni->W;
+            if (top > HRM_FABS(both[n])) both[n] = top;
+        }
+    }
     if (c->coupled) {
         hrm_real off_end, J;
         if (end_stage >= 0) off_end = pts[end_stage].off;
@@ -1822,6 +1911,7 @@ static void hrm__ivp_fixed(hrm__ctx *c, const hrm__tableau *tb, int ab4, int N,
 {
     hrm_real from = c->rte ? c->pb : c->pa, to = c->rte ? c->pa : c->pb;
     hrm_real f[4][HRM__NY]; /* Adams-Bashforth history, f[n % 4] = f_n */
+    hrm_real tau_p[HRM__CH]; /* tau at the step's start */
     hrm__pt start, end;
     int have = 0, n, i, j;
 
@@ -1837,12 +1927,13 @@ static void hrm__ivp_fixed(hrm__ctx *c, const hrm__tableau *tb, int ab4, int N,
                 hrm__deriv(c, &start, y, f[n % 4]);
             }
             if (!have) hrm__eval(c, p, &start);
-            have = hrm__rk_step(c, tb, &start, &end, p, q, y, y, 0);
+            have = hrm__rk_step(c, tb, &start, &end, p, q, y, y, 0, 0, 0);
             if (have) start = end;
         } else {
             if (!have) hrm__eval(c, p, &start);
             have = 0;
             hrm__deriv(c, &start, y, f[n % 4]);
+            memcpy(tau_p, y, sizeof tau_p);
             for (i = 0; i < HRM__NY; ++i) {
                 hrm_real inc = 0;
                 int pos = 1, neg = 1;
@@ -1855,14 +1946,19 @@ static void hrm__ivp_fixed(hrm__ctx *c, const hrm__tableau *tb, int ab4, int N,
                 /* Positivity limiter (optical-depth form): when every history
                    value agrees on the increment's sign, so does the
                    increment. Extrapolating a sharply decaying exp(-tau) S
-                   can otherwise go negative in thick media. */
-                if (!c->rte && ((pos && inc < 0) || (neg && inc > 0))) inc = 0;
+                   can otherwise go negative in thick media. (tau's history
+                   holds sigma_t - sbar, whose sign means nothing: tau is
+                   kept nondecreasing below instead.) */
+                if (!c->rte && i >= HRM__CH && ((pos && inc < 0) || (neg && inc > 0))) inc = 0;
                 y[i] += inc;
             }
             if (c->coupled) {
                 hrm_real off_q, J;
                 hrm__map(c, q, &off_q, &J);
-                for (i = 0; i < HRM__CH; ++i) y[i] += c->sbar[i] * (off_q - start.off);
+                for (i = 0; i < HRM__CH; ++i) {
+                    y[i] += c->sbar[i] * (off_q - start.off);
+                    if (y[i] < tau_p[i]) y[i] = tau_p[i];
+                }
             }
         }
         c->stats.steps++;
@@ -1984,11 +2080,13 @@ static void hrm__ivp_adaptive(hrm__ctx *c, const hrm__tableau *tb, hrm_control c
 {
     hrm_real from = c->rte ? c->pb : c->pa, to = c->rte ? c->pa : c->pb;
     hrm_real P = HRM_FABS(to - from), dir = to > from ? 1 : -1, p = from;
-    hrm_real ynew[HRM__NY], err[HRM__NY], r_prev = 1, r_parent = 0, h;
+    hrm_real ynew[HRM__NY], err[HRM__NY], both[HRM__NY], r_prev = 1, r_parent = 0, h;
     hrm_real kk = (hrm_real)tb->k;
     hrm__pt start, end;
     int cost = hrm__stage_cost(tb), have = 0, after_reject = 0, first = 1, n;
+    hrm__nodes_info ni;
 
+    hrm__nodes_init(tb, &ni);
     hrm__ivp_init(c, y);
     /* The first attempt is the pilot that sets the scale. */
     h = h0 > 0 ? h0 : P * HRM__R(0.5) * HRM_POW(c->rtol, 1 / (kk + 1));
@@ -2007,7 +2105,9 @@ static void hrm__ivp_adaptive(hrm__ctx *c, const hrm__tableau *tb, hrm_control c
         q = hs == rem ? to : p + dir * hs;
         if (!have) hrm__eval(c, p, &start);
         have = 1;
-        if (hrm__rk_step(c, tb, &start, &end, p, q, y, ynew, err) == 0) have = 0;
+        if (hrm__rk_step(c, tb, &start, &end, p, q, y, ynew, err,
+                         control == HRM_CONTROL_PI ? &ni : 0, both) == 0)
+            have = 0;
         if (c->status != HRM_OK) return;
         if (first) {
             /* The first attempt's increment: a part of the total, not
@@ -2019,7 +2119,7 @@ static void hrm__ivp_adaptive(hrm__ctx *c, const hrm__tableau *tb, hrm_control c
                 hrm__set_scale(c, part);
             first = 0;
         }
-        ratio = hrm__ratio(c, control, p, q, y, ynew, err);
+        ratio = hrm__ratio(c, control, p, q, y, ynew, control == HRM_CONTROL_PI ? both : err);
         accept = ratio <= 1 || forced;
         if (!accept && control == HRM_CONTROL_PI && c->rough_left > 0 &&
             hrm__rough(ratio, r_parent) && hrm__ratio(c, HRM__JUMP, p, q, y, ynew, err) <= 1) {
@@ -2567,12 +2667,21 @@ static hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, const hrm_medium *m, 
     hrm__tau_init(layer, HRM__FINITE(c->T) ? c->T : HRM__R(1e30), o->tau_tol);
     if (t0 == t1) return HRM_OK;
 
-    {
+    if (tr_only && HRM__FINITE(c->T)) {
         /* tau alone is integrated in t: a warp only says where an
-           infinite ray ends */
+           infinite ray ends. Its parameters are still checked. */
+        const hrm_warp *w = &o->warp;
         hrm_warp none;
         memset(&none, 0, sizeof none);
-        st = hrm__setup_warp(c, tr_only && HRM__FINITE(c->T) ? &none : &o->warp);
+        if ((int)w->kind < 0 || (int)w->kind > (int)HRM_WARP_USER ||
+            (w->kind == HRM_WARP_DISTANCE && !(HRM__FINITE(w->sigma_ref) && w->sigma_ref >= 0)) ||
+            (w->kind == HRM_WARP_EQUIANGULAR &&
+             !(HRM__FINITE(w->D) && w->D >= 0 && HRM__FINITE(w->delta))) ||
+            (w->kind == HRM_WARP_USER && (!w->t_of_u || !w->dt_du || !w->u_of_t)))
+            return HRM_ERR_BAD_WARP;
+        st = hrm__setup_warp(c, &none);
+    } else {
+        st = hrm__setup_warp(c, &o->warp);
     }
     if (st == HRM_OK) st = c->status;
     if (st != HRM_OK) return st;

@@ -13,7 +13,13 @@
 
    A failed check prints "FAIL file:line [group] message (details)". A NaN
    never passes a numerical check. Every function is static inline so that a
-   file using only some of them compiles warning-free. */
+   file using only some of them compiles warning-free.
+
+   The tally is one object for the whole test program, however many files
+   include this header: it is declared here and defined in the one file that
+   defines HARNESS_IMPLEMENTATION before including it (tests/main.c; a
+   single-file program such as tests/linkage_user.cpp defines it itself). It
+   is the only mutable global of the tests. */
 #ifndef HRM_TEST_HARNESS_H
 #define HRM_TEST_HARNESS_H
 
@@ -30,6 +36,10 @@
 
 #define HARNESS_MAX_PRINTED_FAILURES 200
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct harness_state {
     long passed, failed;             /* all checks */
     long group_passed, group_failed; /* checks of the current group */
@@ -37,11 +47,15 @@ typedef struct harness_state {
     const char *group;
 } harness_state;
 
-static inline harness_state *harness_state_get(void)
-{
-    static harness_state state; /* the one test process's tally */
-    return &state;
+/* The test program's tally (see the top comment). C linkage, so that files
+   compiled as C and as C++ share it. */
+extern harness_state harness_tally;
+
+#ifdef __cplusplus
 }
+#endif
+
+static inline harness_state *harness_state_get(void) { return &harness_tally; }
 
 static inline void harness_vreport(int ok, const char *file, int line,
                                    const char *fmt, va_list ap)
@@ -179,3 +193,15 @@ static inline int harness_summary(void)
 }
 
 #endif /* HRM_TEST_HARNESS_H */
+
+/* The definition of the tally, in one file of the program only. */
+#if defined(HARNESS_IMPLEMENTATION) && !defined(HRM_TEST_HARNESS_IMPLEMENTED)
+#define HRM_TEST_HARNESS_IMPLEMENTED
+#ifdef __cplusplus
+extern "C" {
+#endif
+harness_state harness_tally;
+#ifdef __cplusplus
+}
+#endif
+#endif

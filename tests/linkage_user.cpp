@@ -1,6 +1,7 @@
 // C++ user of hrm.h, linked against the implementation compiled as C
 // (linkage_impl.c): every call below crosses the extern "C" boundary.
 #include "hrm.h"
+#define HARNESS_IMPLEMENTATION // a single-file program: the tally lives here
 #include "harness.h"
 
 #include <cmath>

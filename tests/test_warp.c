@@ -1,10 +1,8 @@
-/* test_warp.h - tests of hrm.h's importance-sampling warps (a change of
+/* test_warp.c - tests of hrm.h's importance-sampling warps (a change of
    variable t = t(u) under every method): none, distance, equiangular (and
    hrm_equiangular_warp), user; infinite rays; the documented fallbacks.
 
-   Included at the end of test_hrm.c, after hrm.h (with HRM_IMPLEMENTATION)
-   and harness.h; its entry point warp_tests() runs every group. Every name
-   here starts with wp_ / WP_.
+   warp_tests() runs every group.
 
    References are computed in double whatever HRM_REAL is, from closed
    forms or from an independent composite Gauss-Legendre quadrature (nodes
@@ -24,7 +22,7 @@
      Monte Carlo              5 sd / sqrt(N), sd^2 = P int (g - mean)^2
                               (uniform; one sample per stratum has a
                               smaller variance, so the bound holds too)
-     adaptive methods         10 rtol |L| (see test_adaptive.h)
+     adaptive methods         10 rtol |L| (see test_adaptive.c)
    M_k is twice the largest k-th divided difference of g on a 600-point
    grid in double (each divided difference is g^(k) at a point between its
    nodes, so the grid samples g^(k) densely; the factor 2 covers the
@@ -32,10 +30,9 @@
    N is chosen per case so that the bound is below 2% of L (Euler 10%,
    Monte Carlo 15%): the check can fail.
    Round-off: every bound gets 8 eps (n + 16)(1 + tau) relative, n the
-   steps taken (test_hrm.c's floor times 8 for the warp's map, which adds a
+   steps taken (common.h's fp_floor times 8 for the warp's map, which adds a
    few roundings per sample; it matters under float only). */
-#ifndef HRM_TEST_WARP_H
-#define HRM_TEST_WARP_H
+#include "common.h"
 
 #include <float.h>
 #include <math.h>
@@ -43,145 +40,40 @@
 #include <stdio.h>
 #include <string.h>
 
-#define WP_NCH HRM_CHANNELS
-#define WP_PI 3.14159265358979323846
-
-static int wp_is_float(void) { return sizeof(hrm_real) == sizeof(float); }
-
-static double wp_eps(void) { return wp_is_float() ? (double)FLT_EPSILON : DBL_EPSILON; }
-
 /* Round-off floor, relative (see the top comment). */
-static double wp_floor(long n, double tau)
-{
-    return 8 * wp_eps() * (double)(n + 16) * (1.0 + tau);
-}
-
-static int wp_finite(double x) { return x == x && x - x == 0.0; }
+static double wp_floor(long n, double tau) { return 8 * fp_floor(n, tau); }
 
 /* ------------------------------------------------------------------------
-   Scenes: a homogeneous medium (or a heterogeneous one for the fallback
-   tests) lit by
-     WP_DIR    a directional light whose path in the medium grows along the
-               ray: Li(s) = E exp(-sigma_t (d0 + k (s - org)))
-     WP_CONST  a constant Li = E
-     WP_POINT  a point light at distance D from the ray, projecting at
-               delta, no attenuation toward it: Li(s) = I / (D^2 + (s-delta)^2)
+   Scenes (common.h's scene; light and medium in a problem): a homogeneous
+   medium (or a heterogeneous one for the fallback tests) lit by
+     LIGHT_DIR    a directional light whose path in the medium grows along
+                  the ray: Li(s) = E exp(-sigma_t (d0 + k s))
+     LIGHT_CONST  a constant Li = E
+     LIGHT_POINT  a point light at distance D from the ray, projecting at
+                  delta, no attenuation toward it: Li(s) = I / (D^2 +
+                  (s - delta)^2)
+   The heterogeneous media give sigma_t and sigma_s = sigma_t / 2 by
+   callbacks: the sine a + b sin(w s) with a = 0.4 + 0.3 f, b = a/2, or
+   the profile qc (s - q0)^2.
    ------------------------------------------------------------------------ */
-enum { WP_DIR, WP_CONST, WP_POINT };
-enum { WP_HOMOG, WP_HET_SINE, WP_HET_QUAD };
-
-typedef struct wp_scene {
-    int light, medium;
-    double sa[WP_NCH], ss[WP_NCH];   /* homogeneous coefficients */
-    double E[WP_NCH], d0, k, org;    /* WP_DIR, WP_CONST */
-    double I[WP_NCH], delta, D;      /* WP_POINT */
-    double a[WP_NCH], b[WP_NCH], w;  /* WP_HET_SINE: sigma_t = a + b sin(w s) */
-    double q0, qc[WP_NCH];           /* WP_HET_QUAD: sigma_t = qc (s - q0)^2 */
-    /* recording */
-    long n_li, n_st, n_ss;
-    double tmin, tmax;
-} wp_scene;
-
-static void wp_reset(wp_scene *sc)
-{
-    sc->n_li = sc->n_st = sc->n_ss = 0;
-    sc->tmin = 1e300;
-    sc->tmax = -1e300;
-}
-
-static void wp_scene_init(wp_scene *sc, int light)
+/* The defaults of scene_init, with this file's sine and sigma_s =
+   sigma_t / 2 in the heterogeneous media; a homogeneous medium lit by
+   `light`. */
+static problem wp_scene_init(scene *sc, int light)
 {
     int c;
-    memset(sc, 0, sizeof *sc);
-    sc->light = light;
-    sc->medium = WP_HOMOG;
-    for (c = 0; c < WP_NCH; ++c) {
-        double f = (double)c / WP_NCH;
-        sc->sa[c] = 0.2 + 0.3 * f;       /* sigma_t = 0.5, 0.75, 1.0 */
-        sc->ss[c] = 0.3 + 0.45 * f;
-        sc->E[c] = 2.0 - 0.9 * f;
-        sc->I[c] = 1.0 + f;
-        sc->a[c] = 0.4 + 0.3 * f;
-        sc->b[c] = 0.5 * sc->a[c];
-        sc->qc[c] = 0.1 + 0.1 * f;
-    }
-    sc->d0 = 0.5;
-    sc->k = 0.5;
-    sc->org = 0;
-    sc->delta = 3.0;
-    sc->D = 1.0;
-    sc->w = 2.0;
-    wp_reset(sc);
+    scene_init(sc);
+    scene_set_sine(sc, 0.4, 0.3);
+    for (c = 0; c < NCH; ++c) sc->pa[c] = 0.5;
+    return make_problem(sc, P_HOM, 0, light);
 }
 
-static void wp_touch(wp_scene *sc, hrm_real t)
+/* The heterogeneous medium of the scene's profile instead. */
+static void wp_heterogeneous(problem *p, int profile)
 {
-    double td = (double)t;
-    if (td < sc->tmin || td != td) sc->tmin = td;
-    if (td > sc->tmax || td != td) sc->tmax = td;
-}
-
-static double wp_st(const wp_scene *sc, int c) { return sc->sa[c] + sc->ss[c]; }
-
-static double wp_li_d(const wp_scene *sc, int c, double s)
-{
-    double x = s - sc->delta;
-    if (sc->light == WP_CONST) return sc->E[c];
-    if (sc->light == WP_DIR) return sc->E[c] * exp(-wp_st(sc, c) * (sc->d0 + sc->k * (s - sc->org)));
-    return sc->I[c] / (sc->D * sc->D + x * x);
-}
-
-static void wp_Li(void *user, hrm_real t, hrm_real out[WP_NCH])
-{
-    wp_scene *sc = (wp_scene *)user;
-    int c;
-    sc->n_li++;
-    wp_touch(sc, t);
-    for (c = 0; c < WP_NCH; ++c) out[c] = (hrm_real)wp_li_d(sc, c, (double)t);
-}
-
-static double wp_het_st(const wp_scene *sc, int c, double s)
-{
-    if (sc->medium == WP_HET_SINE) return sc->a[c] + sc->b[c] * sin(sc->w * s);
-    return sc->qc[c] * (s - sc->q0) * (s - sc->q0);
-}
-
-static void wp_sigma_t(void *user, hrm_real t, hrm_real out[WP_NCH])
-{
-    wp_scene *sc = (wp_scene *)user;
-    int c;
-    sc->n_st++;
-    wp_touch(sc, t);
-    for (c = 0; c < WP_NCH; ++c) out[c] = (hrm_real)wp_het_st(sc, c, (double)t);
-}
-
-static void wp_sigma_s(void *user, hrm_real t, hrm_real out[WP_NCH])
-{
-    wp_scene *sc = (wp_scene *)user;
-    int c;
-    sc->n_ss++;
-    wp_touch(sc, t);
-    for (c = 0; c < WP_NCH; ++c) out[c] = (hrm_real)(0.5 * wp_het_st(sc, c, (double)t));
-}
-
-static hrm_medium wp_medium(wp_scene *sc)
-{
-    hrm_medium m;
-    int c;
-    memset(&m, 0, sizeof m);
-    m.user = sc;
-    m.Li = wp_Li;
-    if (sc->medium != WP_HOMOG) {
-        m.sigma_t = wp_sigma_t;
-        m.sigma_s = wp_sigma_s;
-        return m;
-    }
-    m.flags = HRM_MEDIUM_HOMOGENEOUS;
-    for (c = 0; c < WP_NCH; ++c) {
-        m.const_sigma_a[c] = (hrm_real)sc->sa[c];
-        m.const_sigma_s[c] = (hrm_real)sc->ss[c];
-    }
-    return m;
+    p->kind = P_HET;
+    p->sigmas = SIGMA_TS;
+    p->sc->profile = profile;
 }
 
 /* ------------------------------------------------------------------------
@@ -286,14 +178,14 @@ static void wp_map_init(wp_map *mp, hrm_warp_kind kind, double t0, double t1, do
     case HRM_WARP_DISTANCE:
         /* documented: on a finite ray sigma_ref is lowered to
            ln(1/eps) / (2 (t1 - t0)) if it is above */
-        if (!inf && sref * (t1 - t0) > -log(wp_eps()) / 2) sref = -log(wp_eps()) / 2 / (t1 - t0);
+        if (!inf && sref * (t1 - t0) > -log(real_eps()) / 2) sref = -log(real_eps()) / 2 / (t1 - t0);
         mp->sref = sref;
         mp->ua = 0;
         mp->ub = inf ? 1.0 : -expm1(-sref * (t1 - t0));
         break;
     case HRM_WARP_EQUIANGULAR:
         mp->ua = atan((t0 - delta) / D);
-        mp->ub = inf ? WP_PI / 2 : atan((t1 - delta) / D);
+        mp->ub = inf ? PI / 2 : atan((t1 - delta) / D);
         break;
     case HRM_WARP_USER:
         mp->ua = wp_u_u_d(uw, t0);
@@ -330,70 +222,55 @@ static void wp_map_eval(const wp_map *mp, double u, double *off, double *J)
 }
 
 /* The warped integrand of channel c in a homogeneous medium. At an
-   infinite end it is 0: every scene decays there faster than t' grows. */
-static double wp_g(const wp_scene *sc, const wp_map *mp, int c, double u)
+   infinite end it is 0: every scene decays there faster than t' grows. The
+   attenuation is taken from the offset t(u) - t0 itself, as hrm's map does:
+   nothing is lost to the magnitude of t0. */
+static double wp_g(const problem *p, const wp_map *mp, int c, double u)
 {
+    const scene *sc = p->sc;
     double off, J;
     wp_map_eval(mp, u, &off, &J);
     if (!(off < HUGE_VAL) || !(J < HUGE_VAL) || off > 1e300) return 0;
-    return sc->ss[c] * wp_li_d(sc, c, mp->t0 + off) * exp(-wp_st(sc, c) * off) * J;
+    return sc->sig_s[c] * light_value(sc, p->light, c, mp->t0 + off) * exp(-sig_t_hom(sc, c) * off) * J;
 }
 
-/* Gauss-Legendre nodes and weights on [-1, 1] (Newton on P_n). */
-#define WP_GL_N 10
-static void wp_gl(double x[WP_GL_N], double wt[WP_GL_N])
+typedef struct wp_g_ctx {
+    const problem *p;
+    const wp_map *mp;
+    int c;
+} wp_g_ctx;
+
+static double wp_g_at(const void *ctx, double u)
 {
-    int i, it, j;
-    for (i = 0; i < WP_GL_N; ++i) {
-        double z = cos(WP_PI * (i + 0.75) / (WP_GL_N + 0.5)), dp = 1;
-        for (it = 0; it < 100; ++it) {
-            double p0 = 1, p1 = z, z1;
-            for (j = 2; j <= WP_GL_N; ++j) {
-                double p2 = ((2.0 * j - 1) * z * p1 - (j - 1.0) * p0) / j;
-                p0 = p1;
-                p1 = p2;
-            }
-            dp = WP_GL_N * (z * p1 - p0) / (z * z - 1);
-            z1 = z;
-            z = z1 - p1 / dp;
-            if (fabs(z - z1) < 1e-16) break;
-        }
-        x[i] = z;
-        wt[i] = 2 / ((1 - z * z) * dp * dp);
-    }
+    const wp_g_ctx *x = (const wp_g_ctx *)ctx;
+    return wp_g(x->p, x->mp, x->c, u);
 }
 
 /* Composite 10-point Gauss-Legendre of g (square: of (g - centre)^2)
    over [ua, ub]: error ~ (panel rate)^20 / 1e13, round-off level with 200
    panels here. */
-static double wp_integrate_c(const wp_scene *sc, const wp_map *mp, int c, int square, double centre)
+static double wp_integrate_c(const problem *p, const wp_map *mp, int c, int square, double centre)
 {
-    double x[WP_GL_N], wt[WP_GL_N], h = (mp->ub - mp->ua) / 200, sum = 0;
-    int i, j;
-    wp_gl(x, wt);
-    for (i = 0; i < 200; ++i) {
-        double mid = mp->ua + (i + 0.5) * h;
-        for (j = 0; j < WP_GL_N; ++j) {
-            double v = wp_g(sc, mp, c, mid + 0.5 * h * x[j]);
-            sum += wt[j] * (square ? (v - centre) * (v - centre) : v);
-        }
-    }
-    return sum * 0.5 * h;
+    wp_g_ctx x;
+    x.p = p;
+    x.mp = mp;
+    x.c = c;
+    return gl_integrate(wp_g_at, &x, mp->ua, mp->ub, 200, 10, square, centre);
 }
 
-static double wp_integrate(const wp_scene *sc, const wp_map *mp, int c, int square)
+static double wp_integrate(const problem *p, const wp_map *mp, int c, int square)
 {
-    return wp_integrate_c(sc, mp, c, square, 0);
+    return wp_integrate_c(p, mp, c, square, 0);
 }
 
 /* Twice the largest k-th divided difference (k = 1..4) of g on a
    600-point grid over [ua, ub]: M[k] ~ max |g^(k)|. */
-static void wp_dmax(const wp_scene *sc, const wp_map *mp, int c, double M[5])
+static void wp_dmax(const problem *p, const wp_map *mp, int c, double M[5])
 {
     enum { NG = 600 };
     double v[NG + 1], d[NG + 1], h = (mp->ub - mp->ua) / NG;
     int i, k;
-    for (i = 0; i <= NG; ++i) v[i] = wp_g(sc, mp, c, i == NG ? mp->ub : mp->ua + i * h);
+    for (i = 0; i <= NG; ++i) v[i] = wp_g(p, mp, c, i == NG ? mp->ub : mp->ua + i * h);
     memcpy(d, v, sizeof d);
     M[0] = 0;
     for (k = 1; k <= 4; ++k) {
@@ -421,21 +298,13 @@ static double wp_bound(hrm_method m, int N, double P, const double M[5], double 
     }
 }
 
-static const hrm_method wp_methods[] = {
-    HRM_RECTANGLE, HRM_SIMPSON, HRM_MONTE_CARLO, HRM_EULER, HRM_RK4, HRM_ADAMS_BASHFORTH,
-    HRM_NESTED_SIMPSON, HRM_GAUSS_KRONROD, HRM_BOGACKI_SHAMPINE, HRM_DORMAND_PRINCE,
-    HRM_FEHLBERG, HRM_CASH_KARP, HRM_VERNER };
-#define WP_NMETHODS ((int)(sizeof wp_methods / sizeof wp_methods[0]))
-
-static int wp_adaptive(hrm_method m) { return m >= HRM_NESTED_SIMPSON; }
-
-static double wp_rtol(void) { return wp_is_float() ? 1e-4 : 1e-6; }
+static double wp_rtol(void) { return real_is_float() ? 1e-4 : 1e-6; }
 
 static hrm_options wp_options(hrm_method m, int N, const hrm_warp *w)
 {
     hrm_options o = hrm_default_options(m);
     if (N > 0) o.steps = N;
-    if (wp_adaptive(m)) o.rtol = (hrm_real)wp_rtol();
+    if (is_adaptive(m)) o.rtol = (hrm_real)wp_rtol();
     o.seed = 12345;
     if (w) o.warp = *w;
     return o;
@@ -458,38 +327,7 @@ static hrm_warp wp_warp(hrm_warp_kind kind, double sref, double delta, double D,
     return w;
 }
 
-static int wp_is_error_result(const hrm_result *r)
-{
-    int c, ok = 1;
-    for (c = 0; c < WP_NCH; ++c) ok &= r->L[c] == 0 && r->Tr[c] == 1;
-    return ok;
-}
-
-static int wp_same_result(const hrm_result *a, const hrm_result *b)
-{
-    int c, ok = a->stats.evals == b->stats.evals && a->stats.steps == b->stats.steps;
-    for (c = 0; c < WP_NCH; ++c) ok &= a->L[c] == b->L[c] && a->Tr[c] == b->Tr[c];
-    return ok;
-}
-
-/* Closed forms. WP_DIR over [t0, t1] (t1 may be +inf):
-   L = sigma_s E e^{-sigma_t (d0 + k (t0 - org))} (1 - e^{-lam T}) / lam,
-   lam = sigma_t (1 + k). */
-static double wp_exact_dir(const wp_scene *sc, int c, double t0, double t1)
-{
-    double st = wp_st(sc, c), lam = st * (1 + sc->k);
-    double one = t1 < HUGE_VAL ? -expm1(-lam * (t1 - t0)) : 1.0;
-    return sc->ss[c] * sc->E[c] * exp(-st * (sc->d0 + sc->k * (t0 - sc->org))) * one / lam;
-}
-
-/* WP_CONST: L = sigma_s E / sigma_t (1 - e^{-sigma_t T}) */
-static double wp_exact_const(const wp_scene *sc, int c, double T)
-{
-    double st = wp_st(sc, c);
-    return sc->ss[c] * sc->E[c] / st * (T < HUGE_VAL ? -expm1(-st * T) : 1.0);
-}
-
-/* WP_POINT with sigma_t -> 0 (sigma_s = sigma_t = sig, tiny):
+/* LIGHT_POINT with sigma_t -> 0 (sigma_s = sigma_t = sig, tiny):
    L0 = sig I / D (atan((t1 - delta)/D) - atan((t0 - delta)/D)), the
    difference of arctangents taken without cancellation. The true L lies in
    [L0 (1 - sig T), L0] (e^{-sig s} between 1 - sig T and 1). */
@@ -497,13 +335,13 @@ static double wp_exact_point0(double sig, double I, double delta, double D, doub
 {
     double a = (t0 - delta) / D, ang;
     if (!(t1 < HUGE_VAL)) {
-        ang = WP_PI / 2 - atan(a);
+        ang = PI / 2 - atan(a);
     } else {
         double b = (t1 - delta) / D;
         /* atan b - atan a = atan((b - a) / (1 + a b)) (+ pi when 1 + ab < 0) */
         double den = 1 + a * b;
         ang = atan((b - a) / den);
-        if (den < 0) ang += WP_PI;
+        if (den < 0) ang += PI;
     }
     return sig * I / D * ang;
 }
@@ -522,24 +360,25 @@ typedef struct wp_case {
 /* What the bounds need per channel: M_k, the Monte Carlo deviation sd,
    the reference L and the optical depth. */
 typedef struct wp_bounds {
-    double M[WP_NCH][5], sd[WP_NCH], ref[WP_NCH], tau[WP_NCH], P;
+    double M[NCH][5], sd[NCH], ref[NCH], tau[NCH], P;
 } wp_bounds;
 
-/* M_k, sd and tau of scene sc under map mp (ref is the caller's). */
-static void wp_fill_bounds(const wp_scene *sc, const wp_map *mp, wp_bounds *bd)
+/* M_k, sd and tau of problem p under map mp (ref is the caller's). */
+static void wp_fill_bounds(const problem *p, const wp_map *mp, wp_bounds *bd)
 {
+    const scene *sc = p->sc;
     int c;
     bd->P = mp->ub - mp->ua;
-    for (c = 0; c < WP_NCH; ++c) {
+    for (c = 0; c < NCH; ++c) {
         /* sd^2 = P int g^2 - (int g)^2 = P int (g - mean)^2, the latter
            free of cancellation for a nearly constant g */
-        double i1 = wp_integrate(sc, mp, c, 0);
-        bd->sd[c] = sqrt(bd->P * wp_integrate_c(sc, mp, c, 1, i1 / bd->P));
+        double i1 = wp_integrate(p, mp, c, 0);
+        bd->sd[c] = sqrt(bd->P * wp_integrate_c(p, mp, c, 1, i1 / bd->P));
         /* tau for the round-off floor: an error eps tau in tau matters
            where e^{-tau} does, up to tau ~ 40 */
-        bd->tau[c] = mp->t1 < HUGE_VAL ? wp_st(sc, c) * (mp->t1 - mp->t0) : 40;
+        bd->tau[c] = mp->t1 < HUGE_VAL ? sig_t_hom(sc, c) * (mp->t1 - mp->t0) : 40;
         if (bd->tau[c] > 40) bd->tau[c] = 40;
-        wp_dmax(sc, mp, c, bd->M[c]);
+        wp_dmax(p, mp, c, bd->M[c]);
     }
 }
 
@@ -548,7 +387,7 @@ static double wp_rel_bound(hrm_method m, int N, const wp_bounds *bd)
 {
     double worst = 0;
     int c;
-    for (c = 0; c < WP_NCH; ++c) {
+    for (c = 0; c < NCH; ++c) {
         double b = wp_bound(m, N, bd->P, bd->M[c], bd->sd[c]) / fabs(bd->ref[c]);
         if (!(b <= worst)) worst = b;
     }
@@ -574,28 +413,29 @@ static int wp_pick_n(hrm_method m, int variant, const wp_bounds *bd)
     return n;
 }
 
-/* Solve scene sc over [t0, t1] with method m (variant 1: stratified Monte
+/* Solve problem p over [t0, t1] with method m (variant 1: stratified Monte
    Carlo) under warp w; compare with bd->ref against the method's bound. */
-static void wp_check_method(wp_scene *sc, hrm_method m, int variant, const hrm_warp *w,
+static void wp_check_method(const problem *p, hrm_method m, int variant, const hrm_warp *w,
                             const wp_bounds *bd, double t0, double t1, const char *what)
 {
-    int N = wp_adaptive(m) ? 0 : wp_pick_n(m, variant, bd);
+    scene *sc = p->sc;
+    int N = is_adaptive(m) ? 0 : wp_pick_n(m, variant, bd);
     hrm_options o = wp_options(m, N, w);
-    hrm_medium med = wp_medium(sc);
+    hrm_medium med = problem_medium(p);
     hrm_result r;
     hrm_status st;
     double worst = 0, worst_b = 0, rb;
     const char *var = variant ? " stratified" : "";
     int c;
     o.stratified = variant;
-    wp_reset(sc);
+    scene_reset_counts(sc);
     st = hrm_solve(&med, (hrm_real)t0, t1 < HUGE_VAL ? (hrm_real)t1 : (hrm_real)INFINITY, &o, &r);
     CHECK_INT(st, HRM_OK, "%s %s%s: status", what, hrm_method_name(m), var);
-    rb = wp_adaptive(m) ? 10 * wp_rtol() : wp_rel_bound(m, o.steps, bd);
-    if (!wp_adaptive(m))
+    rb = is_adaptive(m) ? 10 * wp_rtol() : wp_rel_bound(m, o.steps, bd);
+    if (!is_adaptive(m))
         CHECK(rb <= wp_target(m), "%s %s%s: a meaningful bound (%.3g at N = %d)",
               what, hrm_method_name(m), var, rb, o.steps);
-    for (c = 0; c < WP_NCH; ++c) {
+    for (c = 0; c < NCH; ++c) {
         double e = fabs((double)r.L[c] - bd->ref[c]) / fabs(bd->ref[c]);
         double b = rb + wp_floor(r.stats.steps, bd->tau[c]);
         if (!(e / b <= worst)) {
@@ -606,11 +446,10 @@ static void wp_check_method(wp_scene *sc, hrm_method m, int variant, const hrm_w
     CHECK(worst <= 1, "%s %s%s N=%d: error / bound = %.3g (relative bound %.3g, evals %ld)", what,
           hrm_method_name(m), var, o.steps, worst, worst_b, r.stats.evals);
     /* no callback at infinity, none outside [t0, t1] */
-    CHECK(wp_finite(sc->tmax) && sc->tmin >= (double)(hrm_real)t0 &&
+    CHECK(finite_d(sc->tmax) && sc->tmin >= (double)(hrm_real)t0 &&
           (t1 < HUGE_VAL ? sc->tmax <= (double)(hrm_real)t1 : 1),
           "%s %s: callbacks at t in [%.17g, %.17g]", what, hrm_method_name(m), sc->tmin, sc->tmax);
-    for (c = 0; c < WP_NCH; ++c)
-        if (!(wp_finite((double)r.L[c]) && wp_finite((double)r.Tr[c]))) worst = -1;
+    if (!result_finite(&r)) worst = -1;
     CHECK(worst >= 0, "%s %s: finite L and Tr", what, hrm_method_name(m));
 }
 
@@ -629,8 +468,9 @@ static void wp_every_method(void)
     const double t0 = 0.5;
     int li, ci, mi, c;
     for (li = 0; li < 2; ++li) {
-        wp_scene sc;
-        wp_scene_init(&sc, li ? WP_POINT : WP_DIR);
+        scene sc;
+        problem p;
+        p = wp_scene_init(&sc, li ? LIGHT_POINT : LIGHT_DIR);
         /* the directional light has no peak: an equiangular map as if for
            a light 4 away (a milder stretch of the ends than D = 1) */
         if (!li) sc.D = 4.0;
@@ -644,8 +484,8 @@ static void wp_every_method(void)
             char what[160];
             wp_uwarp_init(&uw, cs->infinite);
             if (cs->kind == HRM_WARP_DISTANCE && sref == 0) {
-                double least = wp_st(&sc, 0); /* the default: the smallest sigma_t at t0 */
-                for (c = 0; c < WP_NCH; ++c) least = wp_st(&sc, c) < least ? wp_st(&sc, c) : least;
+                double least = sig_t_hom(&sc, 0); /* the default: the smallest sigma_t at t0 */
+                for (c = 0; c < NCH; ++c) least = sig_t_hom(&sc, c) < least ? sig_t_hom(&sc, c) : least;
                 sref = least;
             }
             w = wp_warp(cs->kind, cs->sref, sc.delta, sc.D, cs->kind == HRM_WARP_USER ? &uw : NULL);
@@ -653,25 +493,25 @@ static void wp_every_method(void)
             /* the reference: closed form (directional) or quadrature in the
                equiangular variable (point light) */
             wp_map_init(&eq, HRM_WARP_EQUIANGULAR, t0, t1, 0, sc.delta, sc.D, NULL);
-            wp_fill_bounds(&sc, &mp, &bd);
-            for (c = 0; c < WP_NCH; ++c) {
-                double viaw = wp_integrate(&sc, &mp, c, 0);
-                bd.ref[c] = li ? wp_integrate(&sc, &eq, c, 0) : wp_exact_dir(&sc, c, t0, t1);
+            wp_fill_bounds(&p, &mp, &bd);
+            for (c = 0; c < NCH; ++c) {
+                double viaw = wp_integrate(&p, &mp, c, 0);
+                bd.ref[c] = li ? wp_integrate(&p, &eq, c, 0) : exact_L(&p, c, t0, t1);
                 /* the test's own maps: the quadrature of g under this warp
                    reproduces the reference (1e-10: 200 x 10 Gauss points) */
                 CHECK_REL(viaw, bd.ref[c], 1e-10, "%s %s: reference map self-check, channel %d",
                           li ? "point" : "directional", cs->name, c);
             }
             snprintf(what, sizeof what, "%s, %s:", li ? "point light" : "directional", cs->name);
-            for (mi = 0; mi < WP_NMETHODS; ++mi) {
-                wp_check_method(&sc, wp_methods[mi], 0, &w, &bd, t0, t1, what);
-                if (wp_methods[mi] == HRM_MONTE_CARLO)
-                    wp_check_method(&sc, wp_methods[mi], 1, &w, &bd, t0, t1, what);
+            for (mi = 0; mi < N_METHODS_ALL; ++mi) {
+                wp_check_method(&p, every_method[mi], 0, &w, &bd, t0, t1, what);
+                if (every_method[mi] == HRM_MONTE_CARLO)
+                    wp_check_method(&p, every_method[mi], 1, &w, &bd, t0, t1, what);
             }
             if (cs->kind == HRM_WARP_USER)
                 /* t_of_u and dt_du only inside [u(t0), u(t1)] */
-                CHECK(uw.umin >= mp.ua - 4 * wp_eps() * fabs(mp.ua) &&
-                      uw.umax <= mp.ub + 4 * wp_eps() * fabs(mp.ub) && uw.calls > 0,
+                CHECK(uw.umin >= mp.ua - 4 * real_eps() * fabs(mp.ua) &&
+                      uw.umax <= mp.ub + 4 * real_eps() * fabs(mp.ub) && uw.calls > 0,
                       "%s user warp called at u in [%.17g, %.17g], range [%.17g, %.17g]", what,
                       uw.umin, uw.umax, mp.ua, mp.ub);
         }
@@ -693,12 +533,13 @@ static void wp_exact_distance(void)
 {
     static const int ns[] = { 1, 2, 3, 7 };
     static const double Ts[] = { 5.0, 50.0, 1e6, HUGE_VAL };
-    wp_scene sc;
+    scene sc;
+    problem p;
     int mi, ni, v, c, k;
-    wp_scene_init(&sc, WP_CONST);
-    for (c = 0; c < WP_NCH; ++c) {
-        sc.sa[c] = 0.3;
-        sc.ss[c] = 0.5;
+    p = wp_scene_init(&sc, LIGHT_CONST);
+    for (c = 0; c < NCH; ++c) {
+        sc.sig_a[c] = 0.3;
+        sc.sig_s[c] = 0.5;
         sc.E[c] = 1.7;
     }
     /* rays [1, 1 + T]: tau = 4, 40, 8e5 and infinite; one check per ray
@@ -710,22 +551,22 @@ static void wp_exact_distance(void)
             long bad_status = 0, at_infinity = 0;
             char list[600];
             list[0] = 0;
-            for (mi = 0; mi < WP_NMETHODS; ++mi) {
+            for (mi = 0; mi < N_METHODS_ALL; ++mi) {
                 double werr = 0, bound = 0;
                 long rejected = 0;
-                for (ni = 0; ni < (wp_adaptive(wp_methods[mi]) ? 1 : 4); ++ni) {
+                for (ni = 0; ni < (is_adaptive(every_method[mi]) ? 1 : 4); ++ni) {
                     hrm_warp w = wp_warp(HRM_WARP_DISTANCE, v ? 0.0 : 0.8, 0, 0, NULL);
-                    hrm_options o = wp_options(wp_methods[mi], ns[ni], &w);
-                    hrm_medium m = wp_medium(&sc);
+                    hrm_options o = wp_options(every_method[mi], ns[ni], &w);
+                    hrm_medium m = problem_medium(&p);
                     hrm_result r;
-                    if (wp_adaptive(wp_methods[mi])) o.steps = 0;
-                    wp_reset(&sc);
+                    if (is_adaptive(every_method[mi])) o.steps = 0;
+                    scene_reset_counts(&sc);
                     bad_status += hrm_solve(&m, (hrm_real)1.0, inf ? (hrm_real)INFINITY : (hrm_real)(1 + T),
                                             &o, &r) != HRM_OK;
                     rejected += r.stats.rejected;
-                    at_infinity += !wp_finite(sc.tmax);
-                    for (c = 0; c < WP_NCH; ++c) {
-                        double x = wp_exact_const(&sc, c, T);
+                    at_infinity += !finite_d(sc.tmax);
+                    for (c = 0; c < NCH; ++c) {
+                        double x = exact_L(&p, c, 1.0, 1.0 + T);
                         double d = fabs((double)r.L[c] - x) / x;
                         if (!(d <= werr)) werr = d;
                     }
@@ -737,7 +578,7 @@ static void wp_exact_distance(void)
                     nbad++;
                     if (pos < (int)sizeof list - 80)
                         pos += snprintf(list + pos, sizeof list - (size_t)pos, " %s %.2g%s",
-                                        hrm_method_name(wp_methods[mi]), werr,
+                                        hrm_method_name(every_method[mi]), werr,
                                         rejected ? " (refined)" : "");
                 }
                 if (!(werr / bound <= worst)) worst = werr / bound;
@@ -757,21 +598,22 @@ static void wp_exact_distance(void)
 
 static void wp_infinite(void)
 {
-    wp_scene sc;
+    scene sc;
+    problem p;
     hrm_result r;
     hrm_medium m;
     hrm_options o;
     hrm_warp w;
     int mi;
-    wp_scene_init(&sc, WP_DIR);
-    m = wp_medium(&sc);
+    p = wp_scene_init(&sc, LIGHT_DIR);
+    m = problem_medium(&p);
     /* without a warp, an infinite t1 is a bad interval, for every method */
-    for (mi = 0; mi < WP_NMETHODS; ++mi) {
-        o = wp_options(wp_methods[mi], 0, NULL);
+    for (mi = 0; mi < N_METHODS_ALL; ++mi) {
+        o = wp_options(every_method[mi], 0, NULL);
         CHECK_INT(hrm_solve(&m, (hrm_real)0.5, (hrm_real)INFINITY, &o, &r), HRM_ERR_BAD_INTERVAL,
-                  "%s, no warp, t1 = inf", hrm_method_name(wp_methods[mi]));
-        CHECK(wp_is_error_result(&r), "%s, no warp, t1 = inf: error result",
-              hrm_method_name(wp_methods[mi]));
+                  "%s, no warp, t1 = inf", hrm_method_name(every_method[mi]));
+        CHECK(is_error_result(&r), "%s, no warp, t1 = inf: error result",
+              hrm_method_name(every_method[mi]));
     }
     /* t0 = inf and t0 = t1 = inf are bad intervals under any warp */
     w = wp_warp(HRM_WARP_DISTANCE, 0.5, 0, 0, NULL);
@@ -784,7 +626,7 @@ static void wp_infinite(void)
               "distance warp, t1 = NaN");
     /* the warp's fallbacks leave no warp: an infinite ray is then a bad
        interval (sigma_t = 0 at t0: the integral need not converge) */
-    w = wp_warp(HRM_WARP_DISTANCE, wp_is_float() ? (double)FLT_MIN / 4 : DBL_MIN / 4, 0, 0, NULL);
+    w = wp_warp(HRM_WARP_DISTANCE, real_is_float() ? (double)FLT_MIN / 4 : DBL_MIN / 4, 0, 0, NULL);
     o = wp_options(HRM_SIMPSON, 8, &w);
     CHECK_INT(hrm_solve(&m, (hrm_real)0.5, (hrm_real)INFINITY, &o, &r), HRM_ERR_BAD_INTERVAL,
               "distance warp with a denormal sigma_ref (no warp), t1 = inf");
@@ -795,14 +637,14 @@ static void wp_infinite(void)
     /* hrm_transmittance on an infinite ray: Tr = 0 in closed form, no
        0 * inf (the homogeneous medium's closed form) */
     {
-        hrm_real Tr[WP_NCH];
+        hrm_real Tr[NCH];
         hrm_stats stats;
         int c, ok = 1;
         w = wp_warp(HRM_WARP_DISTANCE, 0.5, 0, 0, NULL);
         o = wp_options(HRM_GAUSS_KRONROD, 0, &w);
         CHECK_INT(hrm_transmittance(&m, (hrm_real)0.5, (hrm_real)INFINITY, &o, Tr, &stats), HRM_OK,
                   "hrm_transmittance, distance warp, t1 = inf");
-        for (c = 0; c < WP_NCH; ++c) ok &= Tr[c] == 0;
+        for (c = 0; c < NCH; ++c) ok &= Tr[c] == 0;
         CHECK(ok, "hrm_transmittance, t1 = inf: Tr = 0");
     }
     /* a heterogeneous medium on an infinite ray (sigma_t = a + b sin(w s)
@@ -811,16 +653,17 @@ static void wp_infinite(void)
        hrm over a ray long enough that e^{-tau} < 1e-12 beyond it, with a
        tight tolerance. Bound: the two tolerances, 10 rtol each. */
     {
-        wp_scene het;
+        scene het;
+        problem ph;
         hrm_result rl;
         int c, ok = 1;
         double worst = 0;
-        wp_scene_init(&het, WP_CONST);
-        het.medium = WP_HET_SINE;
-        m = wp_medium(&het);
+        ph = wp_scene_init(&het, LIGHT_CONST);
+        wp_heterogeneous(&ph, PROFILE_SINE);
+        m = problem_medium(&ph);
         w = wp_warp(HRM_WARP_DISTANCE, 0, 0, 0, NULL);
         o = wp_options(HRM_DORMAND_PRINCE, 0, &w);
-        wp_reset(&het);
+        scene_reset_counts(&het);
         /* HRM_OK: the steps near the far end of u, where Tr < 1e-10 and
            sigma_t's oscillation is compressed into ever shorter u, decide
            nothing ("no effort goes into tau where Tr is already 0", hrm.h
@@ -832,22 +675,22 @@ static void wp_infinite(void)
                L no abscissa can reach, ~(eps/2)^(mean / sigma_ref) = 1e-5,
                exceeds rtol, so HRM_WARN_H_MIN is the truthful answer. */
             hrm_status st = hrm_solve(&m, (hrm_real)0.5, (hrm_real)INFINITY, &o, &r);
-            CHECK(st == HRM_OK || (wp_is_float() && st == HRM_WARN_H_MIN),
+            CHECK(st == HRM_OK || (real_is_float() && st == HRM_WARN_H_MIN),
                   "heterogeneous, distance warp (default sigma_ref), t1 = inf: status %d", (int)st);
         }
-        CHECK(wp_finite(het.tmax), "heterogeneous, t1 = inf: no callback at infinity (max t %.17g)",
+        CHECK(finite_d(het.tmax), "heterogeneous, t1 = inf: no callback at infinity (max t %.17g)",
               het.tmax);
         /* Tr(t0, inf) = 0; hrm returns Tr at the end of the mapped range,
            t0 + ln(2/eps)/sigma_ref (u = 1 - eps/2; sigma_ref the smallest
            sigma_t at t0), where Tr ~ (eps/2)^(mean sigma_t / sigma_ref):
            1e-11 (double), 1e-5 (float), below 10 rtol */
-        for (c = 0; c < WP_NCH; ++c) ok &= (double)r.Tr[c] <= 10 * wp_rtol() && r.Tr[c] >= 0;
+        for (c = 0; c < NCH; ++c) ok &= (double)r.Tr[c] <= 10 * wp_rtol() && r.Tr[c] >= 0;
         CHECK(ok, "heterogeneous, t1 = inf: Tr = 0 to 10 rtol");
         o = wp_options(HRM_GAUSS_KRONROD, 0, NULL);
-        o.rtol = (hrm_real)(wp_is_float() ? 3e-5 : 1e-9);
+        o.rtol = (hrm_real)(real_is_float() ? 3e-5 : 1e-9);
         CHECK_INT(hrm_solve(&m, (hrm_real)0.5, (hrm_real)200.0, &o, &rl), HRM_OK,
                   "heterogeneous reference on [0.5, 200]");
-        for (c = 0; c < WP_NCH; ++c) {
+        for (c = 0; c < NCH; ++c) {
             double d = fabs((double)r.L[c] - (double)rl.L[c]) / (double)rl.L[c];
             if (!(d <= worst)) worst = d;
         }
@@ -889,8 +732,8 @@ static void wp_equiangular_helper(void)
         CHECK_INT(st, HRM_OK, "hrm_equiangular_warp: status");
         CHECK_INT(w.kind, HRM_WARP_EQUIANGULAR, "hrm_equiangular_warp: kind");
         /* well-conditioned here (no cancellation): 16 eps relative */
-        CHECK_REL(w.delta, delta, 16 * wp_eps(), "hrm_equiangular_warp: delta");
-        CHECK_REL(w.D, D, 16 * wp_eps(), "hrm_equiangular_warp: D");
+        CHECK_REL(w.delta, delta, 16 * real_eps(), "hrm_equiangular_warp: delta");
+        CHECK_REL(w.D, D, 16 * real_eps(), "hrm_equiangular_warp: D");
         CHECK(w.sigma_ref == 0 && w.user == NULL && w.t_of_u == NULL && w.dt_du == NULL &&
               w.u_of_t == NULL, "hrm_equiangular_warp: other members zero");
         /* the light's distance from the point on the ray at delta is D |dir|
@@ -902,9 +745,9 @@ static void wp_equiangular_helper(void)
                 dist += q[i] * q[i];
                 dot += q[i] * (double)d[i];
             }
-            CHECK_REL(sqrt(dist), (double)w.D * sqrt(dd), 64 * wp_eps(),
+            CHECK_REL(sqrt(dist), (double)w.D * sqrt(dd), 64 * real_eps(),
                       "hrm_equiangular_warp: D |dir| is the light's distance from the ray");
-            CHECK_NEAR(dot, 0, 64 * wp_eps() * sqrt(dist * dd), "the foot point is perpendicular");
+            CHECK_NEAR(dot, 0, 64 * real_eps() * sqrt(dist * dd), "the foot point is perpendicular");
         }
     }
     /* A light e = 1e-3 from the ray, 1e6 from the origin: v = light -
@@ -926,35 +769,36 @@ static void wp_equiangular_helper(void)
         l[2] = (hrm_real)1e-3;
         st = hrm_equiangular_warp(o, d, l, &w);
         CHECK_INT(st, HRM_OK, "light near a far ray: status");
-        CHECK_REL(w.delta, 2e5, 8 * wp_eps(), "light near a far ray: delta");
-        CHECK_REL(w.D, e / 5, 8 * wp_eps(), "light near a far ray: D without cancellation");
+        CHECK_REL(w.delta, 2e5, 8 * real_eps(), "light near a far ray: delta");
+        CHECK_REL(w.D, e / 5, 8 * real_eps(), "light near a far ray: D without cancellation");
         /* and the solve with it: a tiny medium (sig = 1e-12) over
            [2e5 - 1, 2e5 + 1]: L = sig I/(|dir|^2 D) (angle) up to sig T */
         {
-            wp_scene sc;
+            scene sc;
+            problem p;
             hrm_medium m;
             hrm_options op;
             hrm_result r;
             double t0 = 2e5 - 1, t1 = 2e5 + 1, L0;
             int c;
-            wp_scene_init(&sc, WP_POINT);
-            for (c = 0; c < WP_NCH; ++c) {
-                sc.sa[c] = 0;
-                sc.ss[c] = 1e-12;
+            p = wp_scene_init(&sc, LIGHT_POINT);
+            for (c = 0; c < NCH; ++c) {
+                sc.sig_a[c] = 0;
+                sc.sig_s[c] = 1e-12;
             }
             /* Li = I / |P - x(t)|^2 = I / (|dir|^2 ((t - delta)^2 + D^2)) */
             sc.delta = 2e5;
             sc.D = e / 5;
-            for (c = 0; c < WP_NCH; ++c) sc.I[c] /= 25;
-            m = wp_medium(&sc);
+            for (c = 0; c < NCH; ++c) sc.I[c] /= 25;
+            m = problem_medium(&p);
             op = wp_options(HRM_GAUSS_KRONROD, 0, &w);
             /* in float the ray's t is resolved to 0.016 around 2e5, far
                coarser than D = 2e-4: the host's Li cannot place the peak,
                so this end-to-end part is for double only */
-            if (!wp_is_float()) {
+            if (!real_is_float()) {
                 CHECK_INT(hrm_solve(&m, (hrm_real)t0, (hrm_real)t1, &op, &r), HRM_OK,
                           "solve with the helper's warp: status");
-                for (c = 0; c < WP_NCH; ++c) {
+                for (c = 0; c < NCH; ++c) {
                     L0 = wp_exact_point0(1e-12, sc.I[c], sc.delta, sc.D, t0, t1);
                     /* bound 1e-5: 10 rtol (1e-6); the ray's t near 2e5 is
                        resolved to 3e-11, 1.5e-7 of D, and Li's error near
@@ -991,73 +835,143 @@ static void wp_equiangular_helper(void)
 /* sigma_ref = 0 means the smallest sigma_t over the channels at t0, at the
    cost of one medium evaluation; sigma_t = 0 at t0 or a denormal
    sigma_ref fall back to no warp. */
+/* L by composite Gauss-Legendre over the closed-form integrand Tr S
+   (exact_f), for scenes whose L has no closed form: 10-point panels of
+   width 0.05 over [t0, t1], or to t0 + 150 for an infinite ray (the
+   directional light's own attenuation is below e^-45 there). Analytic
+   integrands: agrees with a run at half the width to 1e-15. */
+typedef struct wp_ref_ctx {
+    const problem *p;
+    int c;
+    double t0;
+} wp_ref_ctx;
+
+static double wp_ref_f(const void *ctx, double s)
+{
+    const wp_ref_ctx *r = (const wp_ref_ctx *)ctx;
+    return exact_f(r->p, r->c, r->t0, s);
+}
+
+static double wp_rel_ref(const problem *p, double t0, double t1, const hrm_result *r)
+{
+    double e = 0, end = t1 - t1 == 0 ? t1 : t0 + 150;
+    int c;
+    for (c = 0; c < NCH; ++c) {
+        wp_ref_ctx x;
+        double ref, d;
+        x.p = p;
+        x.c = c;
+        x.t0 = t0;
+        ref = gl_integrate(wp_ref_f, &x, t0, end, (int)ceil((end - t0) / 0.05), 10, 0, 0);
+        d = fabs((double)r->L[c] - ref) / fabs(ref);
+        if (!(d <= e)) e = d;
+    }
+    return e;
+}
+
 static void wp_distance_edges(void)
 {
-    wp_scene sc;
+    scene sc;
+    problem p;
     int mi;
     const double t0 = 0.7, t1 = 5.7;
-    wp_scene_init(&sc, WP_DIR);
-    sc.medium = WP_HET_SINE;
-    for (mi = 0; mi < WP_NMETHODS; ++mi) {
-        hrm_method meth = wp_methods[mi];
-        hrm_medium m = wp_medium(&sc);
-        hrm_real v[WP_NCH], sum = 0;
+    p = wp_scene_init(&sc, LIGHT_DIR);
+    wp_heterogeneous(&p, PROFILE_SINE);
+    /* sigma_ref = 0 is the thinnest channel's mean extinction over the
+       ray, -ln(Tr)/(t1 - t0), while its Tr stays above eps/2 (it does
+       here). With the closed-form transmittance callback hrm reads it in
+       one call: the same solve as that value given, formed as hrm forms it,
+       for one more medium evaluation. With sigma callbacks a coarse march
+       of the transmittance layer (tau_tol 1e-3) measures it: a smooth sigma
+       is resolved far below that, so the solve differs from the explicit
+       value by what a relative change of sigma_ref of 1e-6 does to an error
+       of at most 1e-2 (N = 16 here): below 1e-6 of L. */
+    for (mi = 0; mi < N_METHODS_ALL; ++mi) {
+        hrm_method meth = every_method[mi];
         hrm_warp wd = wp_warp(HRM_WARP_DISTANCE, 0, 0, 0, NULL), we;
         hrm_options od = wp_options(meth, 16, &wd), oe;
         hrm_result rd, re;
-        long nd, ne;
-        int c;
-        /* the default is the smallest sigma_t over the channels at t0 (the
-           documented departure from Munoz's mean: it keeps the warped
-           integrand of every channel bounded) */
-        wp_sigma_t(&sc, (hrm_real)t0, v);
-        for (c = 0, sum = v[0]; c < WP_NCH; ++c) sum = v[c] < sum ? v[c] : sum;
-        we = wp_warp(HRM_WARP_DISTANCE, 0, 0, 0, NULL);
-        we.sigma_ref = sum;
-        oe = wp_options(meth, 16, &we);
-        wp_reset(&sc);
-        CHECK_INT(hrm_solve(&m, (hrm_real)t0, (hrm_real)t1, &od, &rd), HRM_OK, "%s: default sigma_ref",
-                  hrm_method_name(meth));
-        nd = sc.n_st;
-        wp_reset(&sc);
-        CHECK_INT(hrm_solve(&m, (hrm_real)t0, (hrm_real)t1, &oe, &re), HRM_OK, "%s: explicit sigma_ref",
-                  hrm_method_name(meth));
-        ne = sc.n_st;
-        CHECK(wp_same_result(&rd, &re), "%s: sigma_ref = 0 solves exactly as the smallest sigma_t at t0",
-              hrm_method_name(meth));
-        CHECK_INT(nd, ne + 1, "%s: the default costs one sigma_t call", hrm_method_name(meth));
-        CHECK_INT(rd.stats.medium_evals, re.stats.medium_evals + 1, "%s: ... and one medium_evals",
-                  hrm_method_name(meth));
+        hrm_real most = 0, T = (hrm_real)t1 - (hrm_real)t0;
+        double worst = 0;
+        int c, k;
+        for (k = 0; k < 2; ++k) {
+            problem q = p;
+            hrm_medium m;
+            q.tr = k == 0;
+            m = problem_medium(&q);
+            for (c = 0; c < NCH; ++c) {
+                hrm_real tr = (hrm_real)exact_tr(&q, c, t0, t1);
+                most = c == 0 || tr > most ? tr : most;
+            }
+            we = wp_warp(HRM_WARP_DISTANCE, 0, 0, 0, NULL);
+            we.sigma_ref = -(real_is_float() ? (hrm_real)logf((float)most) : (hrm_real)log((double)most)) / T;
+            oe = wp_options(meth, 16, &we);
+            CHECK_INT(hrm_solve(&m, (hrm_real)t0, (hrm_real)t1, &od, &rd), HRM_OK, "%s: default sigma_ref",
+                      hrm_method_name(meth));
+            CHECK_INT(hrm_solve(&m, (hrm_real)t0, (hrm_real)t1, &oe, &re), HRM_OK, "%s: explicit sigma_ref",
+                      hrm_method_name(meth));
+            if (k == 0) {
+                CHECK(same_solve(&rd, &re), "%s: sigma_ref = 0 solves as -ln(Tr(t0, t1))/T of the thinnest channel",
+                      hrm_method_name(meth));
+                CHECK_INT(rd.stats.medium_evals, re.stats.medium_evals + 1,
+                          "%s: ... for one more transmittance call", hrm_method_name(meth));
+            } else {
+                for (c = 0; c < NCH; ++c) {
+                    double d = fabs((double)rd.L[c] - (double)re.L[c]) / fabs((double)re.L[c]);
+                    if (!(d <= worst)) worst = d;
+                }
+                CHECK(worst <= (real_is_float() ? 1e-4 : 1e-6),
+                      "%s: sigma callbacks: sigma_ref = 0 solves as the mean extinction (%.3g)",
+                      hrm_method_name(meth), worst);
+                CHECK(rd.stats.medium_evals > re.stats.medium_evals,
+                      "%s: ... measured with medium evaluations", hrm_method_name(meth));
+            }
+        }
     }
-    /* sigma_t = 0 at t0 (sigma_t = qc (s - t0)^2): no warp; the same solve
-       as without a warp, plus the one medium evaluation of the default */
+    /* sigma_t = 0 at t0 (sigma_t = qc (s - t0)^2) is no reason to drop the
+       warp any more: the mean over the ray, qc T^2 / 3 for the thinnest
+       channel, is used; the solve is a warped one (not the unwarped
+       solve) and as accurate as that value given explicitly. */
     {
-        wp_scene q;
-        wp_scene_init(&q, WP_DIR);
-        q.medium = WP_HET_QUAD;
+        scene q;
+        problem pq;
+        pq = wp_scene_init(&q, LIGHT_DIR);
+        wp_heterogeneous(&pq, PROFILE_QUAD);
         q.q0 = (double)(hrm_real)t0; /* exactly 0 at the t0 hrm sees */
-        for (mi = 0; mi < WP_NMETHODS; ++mi) {
-            hrm_method meth = wp_methods[mi];
-            hrm_medium m = wp_medium(&q);
-            hrm_warp wd = wp_warp(HRM_WARP_DISTANCE, 0, 0, 0, NULL);
-            hrm_options od = wp_options(meth, 16, &wd), on = wp_options(meth, 16, NULL);
-            hrm_result rd, rn;
+        for (mi = 0; mi < N_METHODS_ALL; ++mi) {
+            hrm_method meth = every_method[mi];
+            hrm_medium m = problem_medium(&pq);
+            hrm_warp wd = wp_warp(HRM_WARP_DISTANCE, 0, 0, 0, NULL), we = wd;
+            hrm_options od = wp_options(meth, 16, &wd), on = wp_options(meth, 16, NULL), oe;
+            hrm_result rd, rn, re;
+            double lo = 1e300, ed, ee;
+            int c;
+            for (c = 0; c < NCH; ++c) lo = exact_tau(&pq, c, t0, t1) < lo ? exact_tau(&pq, c, t0, t1) : lo;
+            we.sigma_ref = (hrm_real)(lo / (t1 - t0));
+            oe = wp_options(meth, 16, &we);
             CHECK_INT(hrm_solve(&m, (hrm_real)t0, (hrm_real)t1, &od, &rd), HRM_OK,
                       "%s: sigma_t = 0 at t0", hrm_method_name(meth));
             CHECK_INT(hrm_solve(&m, (hrm_real)t0, (hrm_real)t1, &on, &rn), HRM_OK,
                       "%s: no warp", hrm_method_name(meth));
-            CHECK(wp_same_result(&rd, &rn) && rd.stats.medium_evals == rn.stats.medium_evals + 1,
-                  "%s: sigma_t = 0 at t0 falls back to no warp", hrm_method_name(meth));
+            CHECK_INT(hrm_solve(&m, (hrm_real)t0, (hrm_real)t1, &oe, &re), HRM_OK,
+                      "%s: the mean given", hrm_method_name(meth));
+            CHECK(!same_solve(&rd, &rn), "%s: sigma_t = 0 at t0 still warps", hrm_method_name(meth));
+            ed = wp_rel_ref(&pq, t0, t1, &rd);
+            ee = wp_rel_ref(&pq, t0, t1, &re);
+            CHECK(ed <= 2 * ee + wp_floor(rd.stats.evals, max_tau(&pq, t0, t1)) +
+                             (is_adaptive(meth) ? wp_rtol() : 0),
+                  "%s: sigma_t = 0 at t0: as accurate as the mean given (%.3g vs %.3g)",
+                  hrm_method_name(meth), ed, ee);
         }
     }
     /* a denormal sigma_ref: no warp, no medium evaluation; the smallest
        normal one is a warp (nearly the identity: the same L to round-off) */
     {
-        double tiny = wp_is_float() ? (double)FLT_MIN : DBL_MIN;
-        wp_scene_init(&sc, WP_DIR);
-        for (mi = 0; mi < WP_NMETHODS; ++mi) {
-            hrm_method meth = wp_methods[mi];
-            hrm_medium m = wp_medium(&sc);
+        double tiny = real_is_float() ? (double)FLT_MIN : DBL_MIN;
+        p = wp_scene_init(&sc, LIGHT_DIR);
+        for (mi = 0; mi < N_METHODS_ALL; ++mi) {
+            hrm_method meth = every_method[mi];
+            hrm_medium m = problem_medium(&p);
             hrm_warp wd = wp_warp(HRM_WARP_DISTANCE, tiny / 2, 0, 0, NULL);
             hrm_warp wn = wp_warp(HRM_WARP_DISTANCE, tiny, 0, 0, NULL);
             hrm_options od = wp_options(meth, 16, &wd), on = wp_options(meth, 16, NULL);
@@ -1070,63 +984,68 @@ static void wp_distance_edges(void)
                       "%s: denormal sigma_ref", hrm_method_name(meth));
             CHECK_INT(hrm_solve(&m, (hrm_real)t0, (hrm_real)t1, &on, &rn), HRM_OK,
                       "%s: no warp", hrm_method_name(meth));
-            CHECK(wp_same_result(&rd, &rn), "%s: a denormal sigma_ref falls back to no warp",
+            CHECK(same_solve(&rd, &rn), "%s: a denormal sigma_ref falls back to no warp",
                   hrm_method_name(meth));
             CHECK_INT(hrm_solve(&m, (hrm_real)t0, (hrm_real)t1, &ow, &rw), HRM_OK,
                       "%s: sigma_ref = smallest normal", hrm_method_name(meth));
-            for (c = 0; c < WP_NCH; ++c) {
+            for (c = 0; c < NCH; ++c) {
                 double d = fabs((double)rw.L[c] - (double)rn.L[c]) / fabs((double)rn.L[c]);
                 if (!(d <= worst)) worst = d;
             }
             /* u = 1 - e^{-sigma s} ~ sigma s: the identity up to a relative
-               O(sigma T) and the roundings of the map (8 eps per sample) */
-            CHECK(worst <= wp_floor(rn.stats.evals, wp_st(&sc, 2) * (t1 - t0)) +
-                               (wp_adaptive(meth) ? 20 * wp_rtol() : 0),
+               O(sigma T) and the roundings of the map (8 eps per sample),
+               at the optical depth of the thickest channel */
+            CHECK(worst <= wp_floor(rn.stats.evals, max_tau(&p, t0, t1)) +
+                               (is_adaptive(meth) ? 20 * wp_rtol() : 0),
                   "%s: sigma_ref = smallest normal: L as without a warp (%.3g)",
                   hrm_method_name(meth), worst);
         }
     }
-    /* On an infinite ray the default sigma_ref is the smallest sigma_t over
-       the channels at t0 (its light reaches farthest), again at the cost
-       of one medium evaluation. */
-    wp_scene_init(&sc, WP_DIR);
-    sc.medium = WP_HET_SINE;
-    for (mi = 0; mi < WP_NMETHODS; ++mi) {
-        hrm_method meth = wp_methods[mi];
-        hrm_medium m = wp_medium(&sc);
-        hrm_real v[WP_NCH], lo;
-        hrm_warp wd = wp_warp(HRM_WARP_DISTANCE, 0, 0, 0, NULL), we;
+    /* On an infinite ray the default sigma_ref is the thinnest channel's
+       mean extinction up to where its Tr falls below eps/2, measured by
+       the transmittance layer: as accurate as the channel's mean sigma_t
+       given by hand (the sine profile's mean is its a). */
+    p = wp_scene_init(&sc, LIGHT_DIR);
+    wp_heterogeneous(&p, PROFILE_SINE);
+    for (mi = 0; mi < N_METHODS_ALL; ++mi) {
+        hrm_method meth = every_method[mi];
+        hrm_medium m = problem_medium(&p);
+        hrm_warp wd = wp_warp(HRM_WARP_DISTANCE, 0, 0, 0, NULL), we = wd;
         hrm_options od = wp_options(meth, 16, &wd), oe;
         hrm_result rd, re;
+        double lo = 1e300, ed, ee;
         int c;
-        wp_sigma_t(&sc, (hrm_real)t0, v);
-        for (c = 1, lo = v[0]; c < WP_NCH; ++c) lo = v[c] < lo ? v[c] : lo;
-        we = wp_warp(HRM_WARP_DISTANCE, 0, 0, 0, NULL);
-        we.sigma_ref = lo;
+        for (c = 0; c < NCH; ++c) lo = sc.a[c] < lo ? sc.a[c] : lo;
+        we.sigma_ref = (hrm_real)lo;
         oe = wp_options(meth, 16, &we);
-        hrm_solve(&m, (hrm_real)t0, (hrm_real)INFINITY, &od, &rd);
-        hrm_solve(&m, (hrm_real)t0, (hrm_real)INFINITY, &oe, &re);
-        CHECK(wp_same_result(&rd, &re) && rd.stats.medium_evals == re.stats.medium_evals + 1,
-              "%s, t1 = inf: sigma_ref = 0 solves exactly as the smallest sigma_t at t0",
+        CHECK(hrm_solve(&m, (hrm_real)t0, (hrm_real)INFINITY, &od, &rd) >= 0, "%s, t1 = inf: default",
               hrm_method_name(meth));
+        CHECK(hrm_solve(&m, (hrm_real)t0, (hrm_real)INFINITY, &oe, &re) >= 0, "%s, t1 = inf: mean",
+              hrm_method_name(meth));
+        ed = wp_rel_ref(&p, t0, (double)INFINITY, &rd);
+        ee = wp_rel_ref(&p, t0, (double)INFINITY, &re);
+        CHECK(ed <= 2 * ee + wp_floor(rd.stats.evals, 40) + (is_adaptive(meth) ? 10 * wp_rtol() : 0),
+              "%s, t1 = inf: sigma_ref = 0 as accurate as the mean given (%.3g vs %.3g)",
+              hrm_method_name(meth), ed, ee);
     }
-    /* A finite ray longer than ln(1/eps)/2 mean free paths of sigma_ref,
-       with channels thinner than sigma_ref at t0: sigma_ref is lowered to
-       the thinnest sigma_t, but not below ln(1/eps)/(2 (t1 - t0))
-       (documented), i.e. sigma_ref = 10 solves exactly as that value,
-       formed as hrm forms it. */
+    /* A finite ray longer than ln(2/eps) mean free paths of sigma_ref:
+       sigma_ref is lowered to what the ray allows, ln(2/eps) / x, x where
+       the thinnest channel's Tr reaches eps/2 (here, homogeneous: x =
+       ln(2/eps) / sigma_min, so sigma_ref = sigma_min), i.e. sigma_ref =
+       10 solves exactly as that value, formed as hrm forms it. */
     {
-        hrm_real T = (hrm_real)100;
-        hrm_real lg = wp_is_float() ? (hrm_real)logf(FLT_EPSILON) : (hrm_real)log(DBL_EPSILON);
-        hrm_real cap = -lg / 2 / T, thinnest;
+        hrm_real T = (hrm_real)100, reach, x, cap, thinnest;
         int c;
-        wp_scene_init(&sc, WP_DIR);
-        for (c = 0, thinnest = (hrm_real)wp_st(&sc, 0); c < WP_NCH; ++c)
-            if ((hrm_real)wp_st(&sc, c) < thinnest) thinnest = (hrm_real)wp_st(&sc, c);
-        cap = thinnest > cap ? thinnest : cap;
-        for (mi = 0; mi < WP_NMETHODS; ++mi) {
-            hrm_method meth = wp_methods[mi];
-            hrm_medium m = wp_medium(&sc);
+        reach = real_is_float() ? (hrm_real)logf(2 / FLT_EPSILON) : (hrm_real)log(2 / DBL_EPSILON);
+        p = wp_scene_init(&sc, LIGHT_DIR);
+        for (c = 0, thinnest = (hrm_real)sig_t_hom(&sc, 0); c < NCH; ++c)
+            if ((hrm_real)sig_t_hom(&sc, c) < thinnest) thinnest = (hrm_real)sig_t_hom(&sc, c);
+        CHECK(thinnest * T > reach, "the test's ray reaches eps/2");
+        x = reach / thinnest;
+        cap = reach / x;
+        for (mi = 0; mi < N_METHODS_ALL; ++mi) {
+            hrm_method meth = every_method[mi];
+            hrm_medium m = problem_medium(&p);
             hrm_warp wb = wp_warp(HRM_WARP_DISTANCE, 10.0, 0, 0, NULL), wc = wb;
             hrm_options ob, oc;
             hrm_result rb, rc;
@@ -1135,7 +1054,7 @@ static void wp_distance_edges(void)
             oc = wp_options(meth, 16, &wc);
             hrm_solve(&m, (hrm_real)0, T, &ob, &rb);
             hrm_solve(&m, (hrm_real)0, T, &oc, &rc);
-            CHECK(wp_same_result(&rb, &rc), "%s: ray of 100, sigma_ref 10 is lowered to the thinnest channel (>= ln(1/eps)/200)",
+            CHECK(same_solve(&rb, &rc), "%s: ray of 100, sigma_ref 10 is lowered to what the ray allows (the thinnest channel)",
                   hrm_method_name(meth));
         }
     }
@@ -1148,49 +1067,50 @@ static void wp_distance_edges(void)
 static void wp_equiangular_edges(void)
 {
     const double sig = 1e-12;
-    wp_scene sc;
+    scene sc;
+    problem p;
     int mi, c, k;
-    wp_scene_init(&sc, WP_POINT);
-    for (c = 0; c < WP_NCH; ++c) {
-        sc.sa[c] = 0;
-        sc.ss[c] = sig;
+    p = wp_scene_init(&sc, LIGHT_POINT);
+    for (c = 0; c < NCH; ++c) {
+        sc.sig_a[c] = 0;
+        sc.sig_s[c] = sig;
     }
 
     /* D = 0 with the light on the segment (ends included): singular */
     {
         static const double deltas[] = { 0.5, 3.0, 6.5 };
-        hrm_medium m = wp_medium(&sc);
+        hrm_medium m = problem_medium(&p);
         for (k = 0; k < 3; ++k)
-            for (mi = 0; mi < WP_NMETHODS; ++mi) {
+            for (mi = 0; mi < N_METHODS_ALL; ++mi) {
                 hrm_warp w = wp_warp(HRM_WARP_EQUIANGULAR, 0, deltas[k], 0.0, NULL);
-                hrm_options o = wp_options(wp_methods[mi], 8, &w);
+                hrm_options o = wp_options(every_method[mi], 8, &w);
                 hrm_result r;
-                wp_reset(&sc);
+                scene_reset_counts(&sc);
                 CHECK_INT(hrm_solve(&m, (hrm_real)0.5, (hrm_real)6.5, &o, &r), HRM_ERR_SINGULAR,
-                          "%s: D = 0, light at t = %g on [0.5, 6.5]", hrm_method_name(wp_methods[mi]),
+                          "%s: D = 0, light at t = %g on [0.5, 6.5]", hrm_method_name(every_method[mi]),
                           deltas[k]);
-                CHECK(wp_is_error_result(&r) && sc.n_li == 0, "%s: D = 0 inside: error result, no Li",
-                      hrm_method_name(wp_methods[mi]));
+                CHECK(is_error_result(&r) && sc.n_li == 0, "%s: D = 0 inside: error result, no Li",
+                      hrm_method_name(every_method[mi]));
             }
     }
     /* A light nearer the ray than t can resolve there (documented: D at
        most 4 epsilons of max(|delta|, |t0|)) is on the ray: singular; a
        little farther it is a valid warp with a finite answer. */
     {
-        const double delta = 5.0, res = 4 * wp_eps() * 5.0;
-        hrm_medium m = wp_medium(&sc);
+        const double delta = 5.0, res = 4 * real_eps() * 5.0;
+        hrm_medium m = problem_medium(&p);
         hrm_result r;
         hrm_warp w = wp_warp(HRM_WARP_EQUIANGULAR, 0, delta, 0.5 * res, NULL);
         hrm_options o = wp_options(HRM_RECTANGLE, 8, &w);
         CHECK((double)w.D > 0, "the test's D is positive");
         CHECK_INT(hrm_solve(&m, (hrm_real)0.5, (hrm_real)6.5, &o, &r), HRM_ERR_SINGULAR,
                   "equiangular, D = 2 eps |delta|, light on the segment");
-        CHECK(wp_is_error_result(&r), "D = 2 eps |delta|: error result");
+        CHECK(is_error_result(&r), "D = 2 eps |delta|: error result");
         w.D = (hrm_real)(4 * res);
         o = wp_options(HRM_RECTANGLE, 8, &w);
         CHECK_INT(hrm_solve(&m, (hrm_real)0.5, (hrm_real)6.5, &o, &r), HRM_OK,
                   "equiangular, D = 16 eps |delta|: a warp");
-        CHECK(wp_finite((double)r.L[0]) && (double)r.L[0] > 0, "D = 16 eps |delta|: finite L");
+        CHECK(finite_d((double)r.L[0]) && (double)r.L[0] > 0, "D = 16 eps |delta|: finite L");
         w.D = (hrm_real)(0.5 * res);
         w.delta = (hrm_real)9.0; /* off the segment: no singularity */
         o = wp_options(HRM_RECTANGLE, 8, &w);
@@ -1203,8 +1123,8 @@ static void wp_equiangular_edges(void)
     {
         static const double deltas[] = { -2.0, 9.0 };
         for (k = 0; k < 2; ++k)
-            for (mi = 0; mi < WP_NMETHODS; ++mi) {
-                hrm_method meth = wp_methods[mi];
+            for (mi = 0; mi < N_METHODS_ALL; ++mi) {
+                hrm_method meth = every_method[mi];
                 hrm_warp w = wp_warp(HRM_WARP_EQUIANGULAR, 0, deltas[k], 0.0, NULL);
                 hrm_options o = wp_options(meth, 64, &w), on = wp_options(meth, 64, NULL);
                 hrm_medium m;
@@ -1212,13 +1132,13 @@ static void wp_equiangular_edges(void)
                 double worst = 0, rel;
                 sc.delta = deltas[k];
                 sc.D = 0;
-                m = wp_medium(&sc);
+                m = problem_medium(&p);
                 CHECK_INT(hrm_solve(&m, (hrm_real)0.5, (hrm_real)6.5, &o, &r), HRM_OK,
                           "%s: D = 0, light at %g off the segment", hrm_method_name(meth), deltas[k]);
                 hrm_solve(&m, (hrm_real)0.5, (hrm_real)6.5, &on, &rn);
-                CHECK(wp_same_result(&r, &rn), "%s: D = 0 outside: as without a warp",
+                CHECK(same_solve(&r, &rn), "%s: D = 0 outside: as without a warp",
                       hrm_method_name(meth));
-                for (c = 0; c < WP_NCH; ++c) {
+                for (c = 0; c < NCH; ++c) {
                     double L0 = sig * sc.I[c] * (1 / (0.5 - deltas[k]) - 1 / (6.5 - deltas[k]));
                     double d = fabs((double)r.L[c] - L0) / L0;
                     if (!(d <= worst)) worst = d;
@@ -1229,7 +1149,7 @@ static void wp_equiangular_edges(void)
                    * 2/2 ~ 4e-2, so Euler gets 0.1; Monte Carlo 5 sd/8 with
                    sd/L < 0.6 for 1/r^2 over [0.5, 6.5]: 0.4) */
                 rel = meth == HRM_EULER ? 0.1 : meth == HRM_MONTE_CARLO ? 0.4
-                    : wp_adaptive(meth) ? 10 * wp_rtol() : 5e-3;
+                    : is_adaptive(meth) ? 10 * wp_rtol() : 5e-3;
                 CHECK(worst <= rel + sig * 6 + wp_floor(r.stats.steps, 0),
                       "%s: D = 0 outside: relative error %.3g", hrm_method_name(meth), worst);
             }
@@ -1241,8 +1161,8 @@ static void wp_equiangular_edges(void)
         static const double deltas[] = { -2.0, 9.0, 3.3 };
         static const double Ds[] = { 0.7, 0.7, 1e-9 };
         for (k = 0; k < 3; ++k)
-            for (mi = 0; mi < WP_NMETHODS; ++mi) {
-                hrm_method meth = wp_methods[mi];
+            for (mi = 0; mi < N_METHODS_ALL; ++mi) {
+                hrm_method meth = every_method[mi];
                 hrm_warp w;
                 hrm_options o;
                 hrm_medium m;
@@ -1251,17 +1171,17 @@ static void wp_equiangular_edges(void)
                 /* float: t near 3.3 is resolved to 2.4e-7, so a light
                    1e-9 away cannot be placed by the host's Li (whose error
                    near the peak is |t| eps / D relative): D = 1e-2 there */
-                if (k == 2 && wp_is_float()) D = 1e-2;
+                if (k == 2 && real_is_float()) D = 1e-2;
                 sc.delta = deltas[k];
                 sc.D = D;
                 w = wp_warp(HRM_WARP_EQUIANGULAR, 0, deltas[k], D, NULL);
                 o = wp_options(meth, 8, &w);
                 if (meth == HRM_MONTE_CARLO) o.steps = 64;
-                if (wp_adaptive(meth)) o.rtol = (hrm_real)(wp_is_float() ? 1e-4 : 1e-5);
-                m = wp_medium(&sc);
+                if (is_adaptive(meth)) o.rtol = (hrm_real)(real_is_float() ? 1e-4 : 1e-5);
+                m = problem_medium(&p);
                 CHECK_INT(hrm_solve(&m, (hrm_real)0.5, (hrm_real)6.5, &o, &r), HRM_OK,
                           "%s: light at delta %g, D %g", hrm_method_name(meth), deltas[k], D);
-                for (c = 0; c < WP_NCH; ++c) {
+                for (c = 0; c < NCH; ++c) {
                     double L0 = wp_exact_point0(sig, sc.I[c], deltas[k], D, 0.5, 6.5);
                     double d = fabs((double)r.L[c] - L0) / L0;
                     if (!(d <= worst)) worst = d;
@@ -1272,7 +1192,7 @@ static void wp_equiangular_edges(void)
                    1e-2 = 4e-5), averaged over the samples, times 4. With
                    sig = 1e-12 the integrand in u is constant, so endpoint
                    rules (Simpson, RK4) see no boundary layer either. */
-                bound = sig * 6 + wp_floor(r.stats.evals, 0) + (k == 2 ? 4 * 3.3 * wp_eps() / D : 0);
+                bound = sig * 6 + wp_floor(r.stats.evals, 0) + (k == 2 ? 4 * 3.3 * real_eps() / D : 0);
                 CHECK(worst <= bound, "%s: light at delta %g, D %g: relative error %.3g > %.3g",
                       hrm_method_name(meth), deltas[k], D, worst, bound);
                 if (k == 2 && (meth == HRM_RECTANGLE || meth == HRM_SIMPSON || meth == HRM_GAUSS_KRONROD ||
@@ -1287,19 +1207,19 @@ static void wp_equiangular_edges(void)
         const double t0 = 1e3, t1 = 1e3 + 1e-3;
         sc.delta = 0;
         sc.D = 1;
-        for (mi = 0; mi < WP_NMETHODS; ++mi) {
-            hrm_method meth = wp_methods[mi];
+        for (mi = 0; mi < N_METHODS_ALL; ++mi) {
+            hrm_method meth = every_method[mi];
             hrm_warp w = wp_warp(HRM_WARP_EQUIANGULAR, 0, 0, 1, NULL);
             hrm_options o = wp_options(meth, 8, &w), on = wp_options(meth, 8, NULL);
-            hrm_medium m = wp_medium(&sc);
+            hrm_medium m = problem_medium(&p);
             hrm_result r, rn;
             double worst = 0, r0 = (double)(hrm_real)t0, r1 = (double)(hrm_real)t1;
             CHECK_INT(hrm_solve(&m, (hrm_real)t0, (hrm_real)t1, &o, &r), HRM_OK,
                       "%s: tiny angular range", hrm_method_name(meth));
             hrm_solve(&m, (hrm_real)t0, (hrm_real)t1, &on, &rn);
-            CHECK(wp_same_result(&r, &rn), "%s: tiny angular range: as without a warp",
+            CHECK(same_solve(&r, &rn), "%s: tiny angular range: as without a warp",
                   hrm_method_name(meth));
-            for (c = 0; c < WP_NCH; ++c) {
+            for (c = 0; c < NCH; ++c) {
                 double L0 = wp_exact_point0(sig, sc.I[c], 0, 1, r0, r1);
                 double d = fabs((double)r.L[c] - L0) / L0;
                 if (!(d <= worst)) worst = d;
@@ -1316,25 +1236,25 @@ static void wp_equiangular_edges(void)
         /* long, equiangular: light at 5e5, D = 1e3 (float: t resolved to
            0.03 there); sigma = 1e-15 (sigma T = 1e-9) */
         double sg = 1e-15;
-        for (c = 0; c < WP_NCH; ++c) sc.ss[c] = sg;
+        for (c = 0; c < NCH; ++c) sc.sig_s[c] = sg;
         sc.delta = 5e5;
         sc.D = 1e3;
-        for (mi = 0; mi < WP_NMETHODS; ++mi) {
-            hrm_method meth = wp_methods[mi];
+        for (mi = 0; mi < N_METHODS_ALL; ++mi) {
+            hrm_method meth = every_method[mi];
             hrm_warp w = wp_warp(HRM_WARP_EQUIANGULAR, 0, 5e5, 1e3, NULL);
             hrm_options o = wp_options(meth, 8, &w);
-            hrm_medium m = wp_medium(&sc);
+            hrm_medium m = problem_medium(&p);
             hrm_result r;
             double worst = 0;
             CHECK_INT(hrm_solve(&m, (hrm_real)0, (hrm_real)1e6, &o, &r), HRM_OK,
                       "%s: ray of 1e6, equiangular", hrm_method_name(meth));
-            for (c = 0; c < WP_NCH; ++c) {
+            for (c = 0; c < NCH; ++c) {
                 double L0 = wp_exact_point0(sg, sc.I[c], 5e5, 1e3, 0, 1e6);
                 double d = fabs((double)r.L[c] - L0) / L0;
                 if (!(d <= worst)) worst = d;
             }
             /* sigma T = 1e-9, Li's error from t's resolution (1e6 eps / D) */
-            CHECK(worst <= 1e-9 + wp_floor(r.stats.evals, 0) + 4 * 1e6 * wp_eps() / 1e3,
+            CHECK(worst <= 1e-9 + wp_floor(r.stats.evals, 0) + 4 * 1e6 * real_eps() / 1e3,
                   "%s: ray of 1e6, equiangular: error %.3g", hrm_method_name(meth), worst);
         }
     }
@@ -1343,46 +1263,48 @@ static void wp_equiangular_edges(void)
            in wp_every_method; closed form sigma_s E / sigma_t (1 -
            e^{-sigma_t T})):
            v = 0, 1: [0, 1e6] in a thin medium, sigma_t = 1e-5, 2e-5, 3e-5
-           (tau = 10 ... 30: the light comes from all of the ray), under the
-           distance warp with sigma_ref = 1e-5 (in u the integrand is a
-           polynomial of degree 0, 1, 2) and without a warp;
+           (repeating over further channels; tau = 10 ... 30: the light
+           comes from all of the ray), under the distance warp with
+           sigma_ref = 1e-5 (in u the integrand is a polynomial of degree
+           0, 1, 2: integer multiples keep it one) and without a warp;
            v = 2..4: [1e6, 1e6 + 1e-9] (float: + 0.25, t being resolved to
            0.0625 there) with sigma_ref 0.5, the default, and no warp: the
            map works on offsets from t0, so nothing is lost to t0's
            magnitude. (A ray longer than ln(1/eps)/2 mean free paths of
            sigma_ref: see wp_exact_distance and wp_distance_edges.) */
-        wp_scene cs;
+        scene cs;
+        problem pc;
         int v;
         for (v = 0; v < 5; ++v) {
             int longray = v < 2;
-            double t0 = longray ? 0 : 1e6, t1 = longray ? 1e6 : 1e6 + (wp_is_float() ? 0.25 : 1e-9);
+            double t0 = longray ? 0 : 1e6, t1 = longray ? 1e6 : 1e6 + (real_is_float() ? 0.25 : 1e-9);
             double sref = v == 0 ? 1e-5 : v == 2 ? 0.5 : 0; /* 0: the default, the smallest */
             hrm_warp_kind kind = v == 1 || v == 4 ? HRM_WARP_NONE : HRM_WARP_DISTANCE;
             hrm_warp w = wp_warp(kind, sref, 0, 0, NULL);
             wp_map mp;
             wp_bounds bd;
             char what[120];
-            wp_scene_init(&cs, WP_CONST);
+            pc = wp_scene_init(&cs, LIGHT_CONST);
             if (longray)
-                for (c = 0; c < WP_NCH; ++c) {
-                    cs.sa[c] = 0.4e-5 * (c + 1);
-                    cs.ss[c] = 0.6e-5 * (c + 1);
+                for (c = 0; c < NCH; ++c) {
+                    cs.sig_a[c] = 0.4e-5 * (1 + c % 3);
+                    cs.sig_s[c] = 0.6e-5 * (1 + c % 3);
                 }
             if (sref == 0) {
-                for (c = 0; c < WP_NCH; ++c) sref += wp_st(&cs, c);
-                sref /= WP_NCH;
+                for (c = 0; c < NCH; ++c) sref += sig_t_hom(&cs, c);
+                sref /= NCH;
             }
             t0 = (double)(hrm_real)t0;
             t1 = (double)(hrm_real)t1;
             wp_map_init(&mp, kind, t0, t1, sref, 0, 0, NULL);
-            wp_fill_bounds(&cs, &mp, &bd);
-            for (c = 0; c < WP_NCH; ++c) bd.ref[c] = wp_exact_const(&cs, c, t1 - t0);
+            wp_fill_bounds(&pc, &mp, &bd);
+            for (c = 0; c < NCH; ++c) bd.ref[c] = exact_L(&pc, c, t0, t1);
             snprintf(what, sizeof what, "%s ray [%.17g, %.17g], %s:", longray ? "long" : "short", t0, t1,
                      kind == HRM_WARP_NONE ? "no warp" : w.sigma_ref == 0 ? "distance default" : "distance");
-            for (mi = 0; mi < WP_NMETHODS; ++mi) {
-                wp_check_method(&cs, wp_methods[mi], 0, &w, &bd, t0, t1, what);
-                if (wp_methods[mi] == HRM_MONTE_CARLO)
-                    wp_check_method(&cs, wp_methods[mi], 1, &w, &bd, t0, t1, what);
+            for (mi = 0; mi < N_METHODS_ALL; ++mi) {
+                wp_check_method(&pc, every_method[mi], 0, &w, &bd, t0, t1, what);
+                if (every_method[mi] == HRM_MONTE_CARLO)
+                    wp_check_method(&pc, every_method[mi], 1, &w, &bd, t0, t1, what);
             }
         }
     }
@@ -1393,16 +1315,17 @@ static void wp_equiangular_edges(void)
    during the solve: HRM_ERR_CALLBACK_VALUE. */
 static void wp_bad_warps(void)
 {
-    wp_scene sc;
+    scene sc;
+    problem p;
     wp_uwarp uw;
     hrm_medium m;
     hrm_result r;
-    hrm_real Tr[WP_NCH];
+    hrm_real Tr[NCH];
     int i, mi;
     struct { const char *name; hrm_warp w; } bad[16];
     int nb = 0;
-    wp_scene_init(&sc, WP_DIR);
-    m = wp_medium(&sc);
+    p = wp_scene_init(&sc, LIGHT_DIR);
+    m = problem_medium(&p);
     wp_uwarp_init(&uw, 0);
 #define WP_BAD(label, kind, sref, delta, D, uwp)                             \
     do {                                                                      \
@@ -1432,19 +1355,19 @@ static void wp_bad_warps(void)
     bad[nb - 1].w.kind = (hrm_warp_kind)-1;
 #undef WP_BAD
     for (i = 0; i < nb; ++i)
-        for (mi = 0; mi < WP_NMETHODS; ++mi) {
-            hrm_options o = wp_options(wp_methods[mi], 8, &bad[i].w);
+        for (mi = 0; mi < N_METHODS_ALL; ++mi) {
+            hrm_options o = wp_options(every_method[mi], 8, &bad[i].w);
             hrm_stats stats;
             int c, ok = 1;
-            wp_reset(&sc);
+            scene_reset_counts(&sc);
             CHECK_INT(hrm_solve(&m, (hrm_real)0.5, (hrm_real)6.5, &o, &r), HRM_ERR_BAD_WARP, "%s, %s",
-                      bad[i].name, hrm_method_name(wp_methods[mi]));
-            CHECK(wp_is_error_result(&r) && sc.n_li == 0, "%s, %s: error result, no Li", bad[i].name,
-                  hrm_method_name(wp_methods[mi]));
+                      bad[i].name, hrm_method_name(every_method[mi]));
+            CHECK(is_error_result(&r) && sc.n_li == 0, "%s, %s: error result, no Li", bad[i].name,
+                  hrm_method_name(every_method[mi]));
             if (mi) continue;
             CHECK_INT(hrm_transmittance(&m, (hrm_real)0.5, (hrm_real)6.5, &o, Tr, &stats),
                       HRM_ERR_BAD_WARP, "hrm_transmittance, %s", bad[i].name);
-            for (c = 0; c < WP_NCH; ++c) ok &= Tr[c] == 1;
+            for (c = 0; c < NCH; ++c) ok &= Tr[c] == 1;
             CHECK(ok, "hrm_transmittance, %s: Tr = 1", bad[i].name);
         }
     /* a user map that is not increasing over the ray: u_of_t(t1) <= u_of_t(t0) */
@@ -1474,19 +1397,19 @@ static void wp_bad_warps(void)
         o = wp_options(HRM_SIMPSON, 8, &w);
         CHECK_INT(hrm_solve(&m, (hrm_real)0.5, (hrm_real)6.5, &o, &r), HRM_ERR_BAD_WARP,
                   "user map decreasing over the ray");
-        CHECK(wp_is_error_result(&r), "user map decreasing: error result");
+        CHECK(is_error_result(&r), "user map decreasing: error result");
     }
     /* callbacks that fail during the solve */
     for (i = 1; i <= 2; ++i)
-        for (mi = 0; mi < WP_NMETHODS; ++mi) {
+        for (mi = 0; mi < N_METHODS_ALL; ++mi) {
             hrm_warp w = wp_warp(HRM_WARP_USER, 0, 0, 0, &uw);
-            hrm_options o = wp_options(wp_methods[mi], 8, &w);
+            hrm_options o = wp_options(every_method[mi], 8, &w);
             uw.poison = i;
             CHECK_INT(hrm_solve(&m, (hrm_real)0.5, (hrm_real)6.5, &o, &r), HRM_ERR_CALLBACK_VALUE,
-                      "%s: user warp %s", hrm_method_name(wp_methods[mi]),
+                      "%s: user warp %s", hrm_method_name(every_method[mi]),
                       i == 1 ? "t_of_u returns NaN" : "dt_du returns -1");
-            CHECK(wp_is_error_result(&r), "%s: user warp failing: error result",
-                  hrm_method_name(wp_methods[mi]));
+            CHECK(is_error_result(&r), "%s: user warp failing: error result",
+                  hrm_method_name(every_method[mi]));
             uw.poison = 0;
         }
 }
@@ -1511,29 +1434,30 @@ static void wp_measured_equiangular(void)
     const double t0 = 0, t1 = 10;
     int ni, c, s, v, thick;
     for (thick = 0; thick < 2; ++thick) {
-        wp_scene sc;
+        scene sc;
+        problem p;
         wp_map eq;
-        double ref[WP_NCH];
-        wp_scene_init(&sc, WP_POINT);
+        double ref[NCH];
+        p = wp_scene_init(&sc, LIGHT_POINT);
         sc.delta = 4.0;
         sc.D = 0.1;
         if (!thick)
-            for (c = 0; c < WP_NCH; ++c) {
-                sc.sa[c] *= 0.1;
-                sc.ss[c] *= 0.1;
+            for (c = 0; c < NCH; ++c) {
+                sc.sig_a[c] *= 0.1;
+                sc.sig_s[c] *= 0.1;
             }
         wp_map_init(&eq, HRM_WARP_EQUIANGULAR, t0, t1, 0, sc.delta, sc.D, NULL);
-        for (c = 0; c < WP_NCH; ++c) ref[c] = wp_integrate(&sc, &eq, c, 0);
+        for (c = 0; c < NCH; ++c) ref[c] = wp_integrate(&p, &eq, c, 0);
         for (ni = 0; ni < 3; ++ni) {
             double err[2][2]; /* [method: rectangle, MC][warp: none, equiangular] */
             for (v = 0; v < 2; ++v) {
                 hrm_warp w = wp_warp(v ? HRM_WARP_EQUIANGULAR : HRM_WARP_NONE, 0, sc.delta, sc.D, NULL);
                 hrm_options o = wp_options(HRM_RECTANGLE, ns[ni], &w);
-                hrm_medium m = wp_medium(&sc);
+                hrm_medium m = problem_medium(&p);
                 hrm_result r;
                 double e = 0, ms = 0;
                 hrm_solve(&m, (hrm_real)t0, (hrm_real)t1, &o, &r);
-                for (c = 0; c < WP_NCH; ++c) {
+                for (c = 0; c < NCH; ++c) {
                     double d = fabs((double)r.L[c] - ref[c]) / ref[c];
                     if (!(d <= e)) e = d;
                 }
@@ -1542,12 +1466,12 @@ static void wp_measured_equiangular(void)
                 for (s = 0; s < 64; ++s) {
                     o.seed = (uint64_t)(1000 + s);
                     hrm_solve(&m, (hrm_real)t0, (hrm_real)t1, &o, &r);
-                    for (c = 0; c < WP_NCH; ++c) {
+                    for (c = 0; c < NCH; ++c) {
                         double d = ((double)r.L[c] - ref[c]) / ref[c];
                         ms += d * d;
                     }
                 }
-                err[1][v] = sqrt(ms / (64.0 * WP_NCH));
+                err[1][v] = sqrt(ms / (64.0 * NCH));
             }
             if (!thick) {
                 CHECK(err[0][1] < err[0][0],
@@ -1581,19 +1505,20 @@ static void wp_rte_vs_od(void)
     static const hrm_method ms[] = { HRM_EULER, HRM_RK4, HRM_ADAMS_BASHFORTH };
     static const int ns[] = { 8, 32, 128 };
     const double t0 = 0, t1 = 10;
-    wp_scene sc;
+    scene sc;
+    problem p;
     int wi, mi, ni, c, f;
-    wp_scene_init(&sc, WP_POINT);
+    p = wp_scene_init(&sc, LIGHT_POINT);
     sc.delta = 4.0;
     sc.D = 0.3;
     for (wi = 0; wi < 2; ++wi) {
         wp_map mp, eq;
-        double ref[WP_NCH];
+        double ref[NCH];
         hrm_warp w = wi ? wp_warp(HRM_WARP_DISTANCE, 0.1, 0, 0, NULL)
                         : wp_warp(HRM_WARP_EQUIANGULAR, 0, sc.delta, sc.D, NULL);
         wp_map_init(&mp, w.kind, t0, t1, 0.1, sc.delta, sc.D, NULL);
         wp_map_init(&eq, HRM_WARP_EQUIANGULAR, t0, t1, 0, sc.delta, sc.D, NULL);
-        for (c = 0; c < WP_NCH; ++c) ref[c] = wp_integrate(&sc, &eq, c, 0);
+        for (c = 0; c < NCH; ++c) ref[c] = wp_integrate(&p, &eq, c, 0);
         for (mi = 0; mi < 3; ++mi) {
             char line[200];
             int pos = 0;
@@ -1601,19 +1526,19 @@ static void wp_rte_vs_od(void)
                 double e[2];
                 for (f = 0; f < 2; ++f) {
                     hrm_options o = wp_options(ms[mi], ns[ni], &w);
-                    hrm_medium m = wp_medium(&sc);
+                    hrm_medium m = problem_medium(&p);
                     hrm_result r;
                     double worst = 0, ratio = 0;
                     o.form = f ? HRM_FORM_RTE : HRM_FORM_OPTICAL_DEPTH;
                     hrm_solve(&m, (hrm_real)t0, (hrm_real)t1, &o, &r);
-                    for (c = 0; c < WP_NCH; ++c) {
+                    for (c = 0; c < NCH; ++c) {
                         double d = fabs((double)r.L[c] - ref[c]) / ref[c];
                         if (!(d <= worst)) worst = d;
                         if (!f) {
                             double M[5], b;
-                            wp_dmax(&sc, &mp, c, M);
+                            wp_dmax(&p, &mp, c, M);
                             b = wp_bound(ms[mi], ns[ni], mp.ub - mp.ua, M, 0) / ref[c] +
-                                wp_floor(r.stats.steps, wp_st(&sc, c) * (t1 - t0));
+                                wp_floor(r.stats.steps, sig_t_hom(&sc, c) * (t1 - t0));
                             if (d / b > ratio) ratio = d / b;
                         }
                     }
@@ -1634,7 +1559,7 @@ static void wp_rte_vs_od(void)
 
 /* ======================================================================== */
 
-static void warp_tests(void)
+void warp_tests(void)
 {
     RUN_GROUP(wp_every_method);
     RUN_GROUP(wp_exact_distance);
@@ -1647,4 +1572,3 @@ static void warp_tests(void)
     RUN_GROUP(wp_rte_vs_od);
 }
 
-#endif /* HRM_TEST_WARP_H */
