@@ -1,5 +1,5 @@
 # hrm.h - build, test and benchmark.
-#   make test    the compile matrix (gcc/clang, C99/C++, double/float,
+#   make test    the compile matrix (gcc/clang, C99/C++, double/float, 1/3/8 channels,
 #                -O0/-O2, ASan+UBSan, HRM_STATIC, C/C++ linkage), each run
 #                of the test suite, ending with the line "N passed, N failed"
 #   make bench   the single-ray convergence benchmark: tables on the

@@ -207,7 +207,14 @@
    G7 vs K15, the embedded solution), while the higher-order result is
    returned, so the achieved error is usually below rtol, far below for
    nested Simpson and Gauss-Kronrod at tight tolerances (bench/ measures
-   achieved error against rtol for every method and scene). Munoz's and
+   achieved error against rtol for every method and scene). The
+   Runge-Kutta pairs under the default controller also read the stage
+   values as samples of L' at the step's distinct nodes: the top term of
+   their Newton interpolation series, integrated over the step, is a
+   second estimate, and the larger of the two counts (a step over a
+   light's peak can fool both embedded solutions alike; the stage values
+   show it). At a jump, where no series converges, the pair's own estimate
+   judges the rough step. Munoz's and
    Gonterman's controllers (options.control) keep their papers' own
    definitions: eq. 12 relative to |L| per step (whose step rule shrinks the
    step whenever rtol < 0.01: give h_min), and eq. 3.4 error per unit step.

@@ -127,6 +127,22 @@ static hrm_medium tr_make(tr_medium *p, int constants, int with_tr)
     return m;
 }
 
+/* The smoke of this file: sigma_t = 0.6 (1 + 0.5 sin(w s + c)), within
+   +-50% of its mean, sigma_a = pa sigma_t; with point, lit by a point
+   light 0.3 from the ray, projecting at 4. */
+static void tr_smoke(tr_medium *p, double w, double pa, int point)
+{
+    memset(p, 0, sizeof *p);
+    p->a = 0.6;
+    p->amp = 0.5;
+    p->w = w;
+    p->pa = pa;
+    p->point = point;
+    p->I = 1;
+    p->D = 0.3;
+    p->delta = 4;
+}
+
 /* L by Gauss-Legendre: the integrand Tr(0, s) sigma_s(s) Li(s). */
 typedef struct tr_ref_ctx {
     const tr_medium *p;
@@ -241,15 +257,7 @@ static void tr_decoupled_vs_exact(void)
     const double rtols[3] = {1e-2, 1e-4, 1e-6};
     double floor_ = real_is_float() ? 2e-5 : 1e-12;
     double ref[NCH];
-    memset(&p, 0, sizeof p);
-    p.a = 0.6;
-    p.amp = 0.5;
-    p.w = 1.3;
-    p.pa = 0.25;
-    p.point = 1;
-    p.I = 1;
-    p.D = 0.3;
-    p.delta = 4;
+    tr_smoke(&p, 1.3, 0.25, 1);
     for (c = 0; c < NCH; ++c) ref[c] = tr_reference(&p, c, 0, 10);
     for (mi = 0; mi < TR_NMETHODS; ++mi)
         for (k = 0; k < 3; ++k) {
@@ -291,13 +299,7 @@ static void tr_transmittance_layer(void)
     double tol;
     long prev = 0;
     int c, w;
-    memset(&p, 0, sizeof p);
-    p.a = 0.6;
-    p.amp = 0.5;
-    p.w = 2.1;
-    p.pa = 0.5;
-    p.D = 0.3;
-    p.delta = 4;
+    tr_smoke(&p, 2.1, 0.5, 0);
     for (tol = 1e-2; tol >= 1e-12; tol /= 100) {
         hrm_medium ms = tr_make(&p, 0, 0);
         hrm_options o = hrm_default_options(HRM_SIMPSON);
@@ -435,15 +437,7 @@ static void tr_counts(void)
 {
     tr_medium p;
     int mi;
-    memset(&p, 0, sizeof p);
-    p.a = 0.6;
-    p.amp = 0.5;
-    p.w = 1.3;
-    p.pa = 0.25;
-    p.point = 1;
-    p.I = 1;
-    p.D = 0.3;
-    p.delta = 4;
+    tr_smoke(&p, 1.3, 0.25, 1);
     for (mi = 0; mi < TR_NMETHODS; ++mi) {
         hrm_method m = tr_methods[mi];
         hrm_options o = tr_options(m, 16, 1e-4, 1, &p);
