@@ -1090,21 +1090,43 @@ static void hrm__cheb_fit(const hrm_real f[HRM__CHEB + 1], int n,
     *err = HRM_FABS(d[n - 1]) + HRM_FABS(d[n]);
 }
 
-/* F(xi) = sum e_k T_k(xi) in every channel by Clenshaw's recurrence, the
-   channels side by side (independent chains, no waiting on one). */
+/* F(xi) = sum e_k T_k(xi) in every channel by Clenshaw's recurrence,
+   four channels at a time in scalars (independent chains that stay in
+   registers; this is the layer's cost per sample). */
 static void hrm__cheb_eval(const hrm_real e[HRM__CHEB + 2][HRM__CH], int n, hrm_real xi,
                            hrm_real F[HRM__CH])
 {
-    hrm_real b1[HRM__CH], b2[HRM__CH], x2 = 2 * xi;
-    int k, i;
-    for (i = 0; i < HRM__CH; ++i) b1[i] = b2[i] = 0;
-    for (k = n + 1; k >= 1; --k)
-        for (i = 0; i < HRM__CH; ++i) {
-            hrm_real b0 = e[k][i] + x2 * b1[i] - b2[i];
-            b2[i] = b1[i];
-            b1[i] = b0;
+    hrm_real x2 = 2 * xi;
+    int k, i0;
+    for (i0 = 0; i0 < HRM__CH; i0 += 4) {
+        int m = HRM__CH - i0 < 4 ? HRM__CH - i0 : 4;
+        hrm_real a1 = 0, a2 = 0, b1 = 0, b2 = 0, c1 = 0, c2 = 0, d1 = 0, d2 = 0, t;
+        for (k = n + 1; k >= 1; --k) {
+            const hrm_real *ek = e[k] + i0;
+            t = ek[0] + x2 * a1 - a2;
+            a2 = a1;
+            a1 = t;
+            if (m > 1) {
+                t = ek[1] + x2 * b1 - b2;
+                b2 = b1;
+                b1 = t;
+            }
+            if (m > 2) {
+                t = ek[2] + x2 * c1 - c2;
+                c2 = c1;
+                c1 = t;
+            }
+            if (m > 3) {
+                t = ek[3] + x2 * d1 - d2;
+                d2 = d1;
+                d1 = t;
+            }
         }
-    for (i = 0; i < HRM__CH; ++i) F[i] = e[0][i] + xi * b1[i] - b2[i];
+        F[i0] = e[0][i0] + xi * a1 - a2;
+        if (m > 1) F[i0 + 1] = e[0][i0 + 1] + xi * b1 - b2;
+        if (m > 2) F[i0 + 2] = e[0][i0 + 2] + xi * c1 - c2;
+        if (m > 3) F[i0 + 3] = e[0][i0 + 3] + xi * d1 - d2;
+    }
 }
 
 /* The sample positions of a panel: a + (b - a) (1 - cos(j pi / 16)) / 2. */
@@ -1796,6 +1818,7 @@ static void hrm__deriv(const hrm__ctx *c, const hrm__pt *pt, const hrm_real *y, 
 typedef struct hrm__nodes_info {
     int m, stage[HRM__MAX_STAGES];
     hrm_real c[HRM__MAX_STAGES], W;
+    hrm_real bw[HRM__MAX_STAGES], ew[HRM__MAX_STAGES]; /* quadrature weights */
 } hrm__nodes_info;
 
 static void hrm__nodes_init(const hrm__tableau *tb, hrm__nodes_info *ni)
@@ -1813,12 +1836,79 @@ static void hrm__nodes_init(const hrm__tableau *tb, hrm__nodes_info *ni)
         ni->stage[k] = i;
         ni->m++;
     }
+    /* When nothing feeds back (the optical-depth form with Tr known at
+       every node) a step is a quadrature: the weights of the tableau's
+       b and of b - bh gathered on the distinct nodes. */
+    for (j = 0; j < ni->m; ++j) {
+        ni->bw[j] = ni->ew[j] = 0;
+        for (i = 0; i < tb->s; ++i)
+            if (tb->c[i] == ni->c[j]) {
+                ni->bw[j] += tb->b[i];
+                if (tb->bh) ni->ew[j] += tb->b[i] - tb->bh[i];
+            }
+    }
     ni->W = 0;
     for (i = 0; i < 256; ++i) { /* midpoint rule: W needs no precision */
         hrm_real x = ((hrm_real)i + HRM__R(0.5)) / 256, pr = 1;
         for (k = 0; k + 1 < ni->m; ++k) pr *= x - ni->c[k];
         ni->W += HRM_FABS(pr) / 256;
     }
+}
+
+/* The top term of the Newton interpolation series of the values d at the
+   distinct nodes, integrated over a step of length h (d is overwritten
+   with the divided differences). */
+static hrm_real hrm__newton_top(const hrm__nodes_info *ni, hrm_real *d, hrm_real h)
+{
+    int i, j;
+    for (j = 1; j < ni->m; ++j)
+        for (i = ni->m - 1; i >= j; --i) d[i] = (d[i] - d[i - 1]) / (ni->c[i] - ni->c[i - j]);
+    return HRM_FABS(h * d[ni->m - 1]) * ni->W;
+}
+
+/* The quadrature form of a step (see hrm__nodes_info): the distinct nodes
+   in ascending order, L' = Tr S at each, no stage sums. */
+static int hrm__rk_quad(hrm__ctx *c, const hrm__nodes_info *ni, const hrm__pt *start,
+                        hrm__pt *end, hrm_real p, hrm_real p_end, const hrm_real *y,
+                        hrm_real *ynew, hrm_real *err, hrm_real *both)
+{
+    hrm__pt pn[HRM__MAX_STAGES];
+    hrm_real f[HRM__MAX_STAGES][HRM__CH], h = p_end - p;
+    int i, j, endj = -1;
+    for (j = 0; j < ni->m; ++j) {
+        const hrm__pt *q = start;
+        hrm_real cj = ni->c[j];
+        if (cj != 0) {
+            hrm__eval(c, cj == 1 ? p_end : p + cj * h, &pn[j]);
+            q = &pn[j];
+            if (cj == 1) endj = j;
+        }
+        for (i = 0; i < HRM__CH; ++i) f[j][i] = q->tr[i] * q->gq[i];
+    }
+    for (i = 0; i < HRM__CH; ++i) {
+        hrm_real acc = 0, eacc = 0;
+        for (j = 0; j < ni->m; ++j) {
+            acc += ni->bw[j] * f[j][i];
+            eacc += ni->ew[j] * f[j][i];
+        }
+        ynew[i] = y[i];
+        ynew[HRM__CH + i] = y[HRM__CH + i] + h * acc;
+        if (err) {
+            err[i] = 0;
+            err[HRM__CH + i] = h * eacc;
+        }
+    }
+    if (err && both) {
+        memcpy(both, err, sizeof(hrm_real) * HRM__NY);
+        for (i = 0; i < HRM__CH; ++i) {
+            hrm_real d[HRM__MAX_STAGES], top;
+            for (j = 0; j < ni->m; ++j) d[j] = f[j][i];
+            top = hrm__newton_top(ni, d, h);
+            if (top > HRM_FABS(both[HRM__CH + i])) both[HRM__CH + i] = top;
+        }
+    }
+    if (endj >= 0) *end = pn[endj];
+    return endj >= 0;
 }
 
 static int hrm__rk_step(hrm__ctx *c, const hrm__tableau *tb, const hrm__pt *start,
@@ -1833,6 +1923,7 @@ static int hrm__rk_step(hrm__ctx *c, const hrm__tableau *tb, const hrm__pt *star
     int i, j, n, end_stage = -1;
 
     HRM_ASSERT(tb->s <= HRM__MAX_STAGES);
+    if (!c->rte && !c->coupled) return hrm__rk_quad(c, ni, start, end, p, p_end, y, ynew, err, both);
     hrm__fill(Y, HRM__NY, 0);
     for (i = 0; i < tb->s; ++i) {
         hrm_real ci = tb->c[i];
@@ -1870,7 +1961,7 @@ static int hrm__rk_step(hrm__ctx *c, const hrm__tableau *tb, const hrm__pt *star
         ynew[n] = y[n] + h * acc;
         if (err) err[n] = h * eacc;
     }
-    if (err && ni) {
+    if (err && both) {
         /* A second opinion on the step, which an embedded pair cannot
            give where both of its solutions are wrong alike (a step over a
            light's peak): the stage values of L' at the distinct nodes have
@@ -1883,10 +1974,7 @@ static int hrm__rk_step(hrm__ctx *c, const hrm__tableau *tb, const hrm__pt *star
         for (n = HRM__CH; n < HRM__NY; ++n) {
             hrm_real d[HRM__MAX_STAGES], top;
             for (i = 0; i < ni->m; ++i) d[i] = k[ni->stage[i]][n];
-            for (j = 1; j < ni->m; ++j)
-                for (i = ni->m - 1; i >= j; --i)
-                    d[i] = (d[i] - d[i - 1]) / (ni->c[i] - ni->c[i - j]);
-            top = HRM_FABS(h * d[ni->m - 1]) * ni->W;
+            top = hrm__newton_top(ni, d, h);
             if (top > HRM_FABS(both[n])) both[n] = top;
         }
     }
@@ -1919,9 +2007,11 @@ static void hrm__ivp_fixed(hrm__ctx *c, const hrm__tableau *tb, int ab4, int N,
     hrm_real from = c->rte ? c->pb : c->pa, to = c->rte ? c->pa : c->pb;
     hrm_real f[4][HRM__NY]; /* Adams-Bashforth history, f[n % 4] = f_n */
     hrm_real tau_p[HRM__CH]; /* tau at the step's start */
+    hrm__nodes_info ni;
     hrm__pt start, end;
     int have = 0, n, i, j;
 
+    hrm__nodes_init(tb, &ni);
     hrm__ivp_init(c, y);
     for (n = 0; n < N; ++n) {
         hrm_real p = from + (to - from) * ((hrm_real)n / (hrm_real)N);
@@ -1934,7 +2024,7 @@ static void hrm__ivp_fixed(hrm__ctx *c, const hrm__tableau *tb, int ab4, int N,
                 hrm__deriv(c, &start, y, f[n % 4]);
             }
             if (!have) hrm__eval(c, p, &start);
-            have = hrm__rk_step(c, tb, &start, &end, p, q, y, y, 0, 0, 0);
+            have = hrm__rk_step(c, tb, &start, &end, p, q, y, y, 0, &ni, 0);
             if (have) start = end;
         } else {
             if (!have) hrm__eval(c, p, &start);
@@ -2016,7 +2106,7 @@ static hrm_real hrm__ratio(const hrm__ctx *c, int control, hrm_real p0, hrm_real
         hrm_real inc = HRM_FABS(y1[n] - y0[n]), Y = HRM_FABS(y1[n]);
         /* An error in tau matters through exp(-tau) only: weigh it by the
            transmittance at the step's start (no effort where Tr is 0). */
-        if (n < HRM__CH && !c->rte) e *= HRM_EXP(-y0[n]);
+        if (n < HRM__CH && !c->rte && e > 0) e *= HRM_EXP(-y0[n]);
         if (control == HRM_CONTROL_MUNOZ) {
             tol = atol + c->rtol * Y;
         } else if (control == HRM_CONTROL_GONTERMAN) {
@@ -2112,8 +2202,8 @@ static void hrm__ivp_adaptive(hrm__ctx *c, const hrm__tableau *tb, hrm_control c
         q = hs == rem ? to : p + dir * hs;
         if (!have) hrm__eval(c, p, &start);
         have = 1;
-        if (hrm__rk_step(c, tb, &start, &end, p, q, y, ynew, err,
-                         control == HRM_CONTROL_PI ? &ni : 0, both) == 0)
+        if (hrm__rk_step(c, tb, &start, &end, p, q, y, ynew, err, &ni,
+                         control == HRM_CONTROL_PI ? both : 0) == 0)
             have = 0;
         if (c->status != HRM_OK) return;
         if (first) {

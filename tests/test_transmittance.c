@@ -244,8 +244,8 @@ static void tr_constant_sigma(void)
 
 /* 2. Decoupled tau in a heterogeneous medium (sigma_t within +-50% of its
    mean) under the equiangular warp: the error is that of the same solve
-   given the exact Tr as a callback, within 2x (the issue's target) plus a
-   floor of round-off (the exact-Tr solve's own error can be far below
+   given the exact Tr as a callback, within 2x (the target of the
+   transmittance work) plus a floor of round-off (the exact-Tr solve's own error can be far below
    what tau can be resolved to in this precision). For every method, at N =
    8, 32, 128 or rtol 1e-2, 1e-4, 1e-6. Coupled tau is measured too (a
    note: the warp spaces its sigma samples sparsely far from the light). */
@@ -277,7 +277,10 @@ static void tr_decoupled_vs_exact(void)
                 ex = x > ex ? x : ex;
                 ec = cc > ec ? cc : ec;
             }
-            CHECK_NEAR(ed, 0, 2 * ex + floor_,
+            /* adaptive methods: the two solves take different steps (Tr
+               differs, so do the estimates), and tau adds at most its
+               default tau_tol = rtol/32 (TRANSMITTANCE) */
+            CHECK_NEAR(ed, 0, 2 * ex + floor_ + (tr_adaptive(m) ? rtols[k] / 32 : 0),
                        "%s %s %g: decoupled tau within 2x of the exact-Tr solve's error",
                        hrm_method_name(m), tr_adaptive(m) ? "rtol" : "N",
                        tr_adaptive(m) ? rtols[k] : (double)ns[k]);
