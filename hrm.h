@@ -1090,37 +1090,40 @@ static void hrm__cheb_fit(const hrm_real f[HRM__CHEB + 1], int n,
     *err = HRM_FABS(d[n - 1]) + HRM_FABS(d[n]);
 }
 
-/* F(xi) = sum e_k T_k(xi) in every channel by Clenshaw's recurrence,
-   four channels at a time in scalars (independent chains that stay in
-   registers; this is the layer's cost per sample). */
+/* F(xi) = sum e_k T_k(xi) in every channel by Clenshaw's recurrence, two
+   terms a step (b_(k-1) = e_(k-1) + x2 e_k + (x2^2 - 1) b_(k+1) - x2
+   b_(k+2) alongside b_k: half the chain of dependent operations), up to
+   four channels at a time in scalars that stay in registers. This is the
+   layer's cost a sample. */
+#define HRM__CLENSHAW2(j, u1, u2)                                             \
+    do {                                                                      \
+        hrm_real bk_ = ek[j] + x2 * u1 - u2;                                  \
+        u1 = ek1[j] + x2 * ek[j] + q * u1 - x2 * u2;                          \
+        u2 = bk_;                                                             \
+    } while (0)
+
 static void hrm__cheb_eval(const hrm_real e[HRM__CHEB + 2][HRM__CH], int n, hrm_real xi,
                            hrm_real F[HRM__CH])
 {
-    hrm_real x2 = 2 * xi;
+    hrm_real x2 = 2 * xi, q = x2 * x2 - 1;
     int k, i0;
     for (i0 = 0; i0 < HRM__CH; i0 += 4) {
         int m = HRM__CH - i0 < 4 ? HRM__CH - i0 : 4;
-        hrm_real a1 = 0, a2 = 0, b1 = 0, b2 = 0, c1 = 0, c2 = 0, d1 = 0, d2 = 0, t;
-        for (k = n + 1; k >= 1; --k) {
-            const hrm_real *ek = e[k] + i0;
-            t = ek[0] + x2 * a1 - a2;
-            a2 = a1;
-            a1 = t;
-            if (m > 1) {
-                t = ek[1] + x2 * b1 - b2;
-                b2 = b1;
-                b1 = t;
-            }
-            if (m > 2) {
-                t = ek[2] + x2 * c1 - c2;
-                c2 = c1;
-                c1 = t;
-            }
-            if (m > 3) {
-                t = ek[3] + x2 * d1 - d2;
-                d2 = d1;
-                d1 = t;
-            }
+        hrm_real a1 = 0, a2 = 0, b1 = 0, b2 = 0, c1 = 0, c2 = 0, d1 = 0, d2 = 0;
+        k = n + 1;
+        if (k % 2) { /* an odd count of terms: one single step first */
+            a1 = e[k][i0];
+            if (m > 1) b1 = e[k][i0 + 1];
+            if (m > 2) c1 = e[k][i0 + 2];
+            if (m > 3) d1 = e[k][i0 + 3];
+            --k;
+        }
+        for (; k >= 2; k -= 2) {
+            const hrm_real *ek = e[k] + i0, *ek1 = e[k - 1] + i0;
+            HRM__CLENSHAW2(0, a1, a2);
+            if (m > 1) HRM__CLENSHAW2(1, b1, b2);
+            if (m > 2) HRM__CLENSHAW2(2, c1, c2);
+            if (m > 3) HRM__CLENSHAW2(3, d1, d2);
         }
         F[i0] = e[0][i0] + xi * a1 - a2;
         if (m > 1) F[i0 + 1] = e[0][i0 + 1] + xi * b1 - b2;
@@ -1128,6 +1131,7 @@ static void hrm__cheb_eval(const hrm_real e[HRM__CHEB + 2][HRM__CH], int n, hrm_
         if (m > 3) F[i0 + 3] = e[0][i0 + 3] + xi * d1 - d2;
     }
 }
+#undef HRM__CLENSHAW2
 
 /* The sample positions of a panel: a + (b - a) (1 - cos(j pi / 16)) / 2. */
 static hrm_real hrm__cheb_at(hrm_real a, hrm_real b, int j16)
