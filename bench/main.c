@@ -91,7 +91,7 @@ static void bench_list(const bench_state *st)
         printf("\n");
     }
     printf("warps:\n  none\n  natural      the scene's own (above)\n"
-           "  distance     sigma_ref 0: hrm's choice from sigma_t at t0\n"
+           "  distance     sigma_ref 0: hrm's choice, the thinnest channel's mean extinction over the ray\n"
            "  equiangular  toward the scene's point light (point, occluder, thin, smoke)\n");
     printf("media:\n  const        homogeneous constants (HRM_MEDIUM_HOMOGENEOUS); homogeneous "
            "scenes only\n  sigma        sigma_a/sigma_s callbacks (homogeneous scenes: the same "

@@ -195,7 +195,7 @@ int bench_warp_apply(const bench_scene *sc, bench_warp_id w, hrm_options *o)
         return 1;
     case BENCH_WARP_DISTANCE:
         o->warp.kind = HRM_WARP_DISTANCE;
-        o->warp.sigma_ref = 0; /* hrm's choice from sigma_t at t0 */
+        o->warp.sigma_ref = 0; /* hrm's choice: the mean extinction over the ray */
         return 1;
     case BENCH_WARP_EQUIANGULAR:
         /* from hrm_equiangular_warp for the ray x(s) = (s, 0, 0) */

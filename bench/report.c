@@ -293,7 +293,7 @@ void bench_report_scene(const bench_state *st, int si)
         hrm_options o;
         bench_warp_apply(sc, warps[wi], &o);
         printf("%s %s", wi ? "," : "", bench_warp_names[warps[wi]]);
-        if (warps[wi] == BENCH_WARP_DISTANCE) printf(" (sigma_ref 0: hrm's choice from sigma_t at t0)");
+        if (warps[wi] == BENCH_WARP_DISTANCE) printf(" (sigma_ref 0: hrm's choice, the mean extinction over the ray)");
         if (warps[wi] == BENCH_WARP_EQUIANGULAR)
             printf(" (delta = %g, D = %g, from hrm_equiangular_warp)", (double)o.warp.delta,
                    (double)o.warp.D);

@@ -71,7 +71,7 @@ void bench_count(void *user, unsigned which, hrm_real t);
 
 typedef enum bench_warp_id {
     BENCH_WARP_NONE,
-    BENCH_WARP_DISTANCE,    /* sigma_ref 0: mean sigma_t at t0 */
+    BENCH_WARP_DISTANCE,    /* sigma_ref 0: hrm's choice, the thinnest channel's mean extinction over the ray */
     BENCH_WARP_EQUIANGULAR, /* toward the scene's point light */
     BENCH_WARP_COUNT
 } bench_warp_id;
