@@ -292,7 +292,15 @@
        at its start, is at most tau_tol times its own increment of tau.
        L's relative error from tau is then below tau_tol, whatever the
        warp does with the source samples, and no effort goes where Tr is
-       already 0. Cost: medium evaluations only (no Le or Li call), about
+       already 0. A rejected panel's largest and smallest samples are
+       remembered, and a later panel over one must reproduce it: a thin
+       feature once sampled is not lost when the panel that saw it is
+       split. A feature narrower than the spacing of the samples of a panel
+       (the first spans 8 mean free paths of the densest channel at t0, or
+       the whole ray if that is thinner: 9 samples) with nothing around it
+       can still be missed: there, give a closed-form transmittance or
+       split the ray at the medium's boundaries.
+       Cost: medium evaluations only (no Le or Li call), about
        16 per panel; a smooth medium varying by +-50% over the ray takes
        50-200 of them at the default tau_tol, a constant one 9, a jump in
        sigma (a medium's boundary) a few hundred. When a sigma evaluation
@@ -1023,6 +1031,7 @@ static hrm_real hrm__uniform(uint64_t *state)
 #endif
 #define HRM__CHEB 16       /* the highest degree of a panel */
 #define HRM__TCACHE 8      /* panels whose coefficients are kept */
+#define HRM__TMEM 32       /* samples of rejected panels remembered */
 
 typedef struct hrm__tpanel {
     hrm_real a, b;          /* offsets from t0 */
@@ -1046,6 +1055,12 @@ typedef struct hrm__tau {
     hrm__tcoef cache[HRM__TCACHE];
     int last;               /* the cache entry used last */
     int next;               /* the entry to fill next (round robin) */
+    /* Samples that a rejected panel saw ahead of the march (its largest
+       and smallest sigma_t), ascending in x: a later panel over one of
+       them must reproduce it, so that a thin feature once seen is not
+       lost when the panel that saw it is split. */
+    int nmem;
+    hrm_real mem_x[HRM__TMEM], mem_s[HRM__TMEM][HRM__CH];
 } hrm__tau;
 
 /* sigma_t at offset off from t0: one medium evaluation. */
@@ -1062,9 +1077,9 @@ static void hrm__sigma_t_at(hrm__ctx *c, hrm_real off, hrm_real st[HRM__CH])
    estimate |d_(n-1)| + |d_n| (in units of sigma_t). */
 static void hrm__cheb_fit(const hrm_real f[HRM__CHEB + 1], int n,
                           hrm_real e[HRM__CHEB + 2][HRM__CH], int ch,
-                          hrm_real *incr, hrm_real *err)
+                          hrm_real *incr, hrm_real *err, hrm_real d[HRM__CHEB + 3])
 {
-    hrm_real d[HRM__CHEB + 3], sum = 0, alt = 0;
+    hrm_real sum = 0, alt = 0;
     int j, k, step = HRM__CHEB / n;
     for (k = 0; k <= n; ++k) {
         hrm_real acc;
@@ -1149,15 +1164,30 @@ static hrm_real hrm__tau_fit(hrm__ctx *c, const hrm__tau *L, hrm_real a, hrm_rea
                              hrm_real dtau[HRM__CH])
 {
     hrm_real v[HRM__CH], worst = 0;
-    int j, i, step = HRM__CHEB / n;
+    int j, i, k, step = HRM__CHEB / n;
     for (j = step; j <= HRM__CHEB; j += step) {
         if (have8 && j % 2 == 0) continue;
         hrm__sigma_t_at(c, hrm__cheb_at(a, b, j), v);
         for (i = 0; i < HRM__CH; ++i) f[i][j] = v[i];
     }
     for (i = 0; i < HRM__CH; ++i) {
-        hrm_real err, big = 0, allow, w;
-        hrm__cheb_fit(f[i], n, co->e, i, &dtau[i], &err);
+        hrm_real err, big = 0, allow, w, d[HRM__CHEB + 3];
+        hrm__cheb_fit(f[i], n, co->e, i, &dtau[i], &err, d);
+        /* a remembered sample inside must be reproduced: its miss, per
+           unit length, counts as the interpolant's error */
+        for (k = 0; k < L->nmem; ++k) {
+            hrm_real x = L->mem_x[k], xi, b1 = 0, b2 = 0, b0, miss;
+            int kk;
+            if (!(x > a && x < b)) continue;
+            xi = 2 * (x - a) / (b - a) - 1;
+            for (kk = n; kk >= 1; --kk) {
+                b0 = d[kk] + 2 * xi * b1 - b2;
+                b2 = b1;
+                b1 = b0;
+            }
+            miss = HRM_FABS(d[0] + xi * b1 - b2 - L->mem_s[k][i]);
+            if (miss > err) err = miss;
+        }
         dtau[i] *= (b - a) / 2;
         if (dtau[i] < 0) dtau[i] = 0;
         for (j = 0; j <= HRM__CHEB; j += step) big = f[i][j] > big ? f[i][j] : big;
@@ -1197,7 +1227,37 @@ static void hrm__tau_init(hrm__tau *L, hrm_real end, hrm_real tol)
     L->end = end;
     L->tol = tol;
     L->next_h = 0;
+    L->nmem = 0;
     hrm__forget(L);
+}
+
+/* Remember the largest and the smallest sigma_t (summed over channels)
+   that a rejected panel [a, b] sampled inside it: a thin layer or a hole
+   it saw. */
+static void hrm__tau_remember(hrm__tau *L, hrm_real a, hrm_real b, int n,
+                              hrm_real f[HRM__CH][HRM__CHEB + 1])
+{
+    int j, i, k, pick[2] = {-1, -1}, step = HRM__CHEB / n;
+    hrm_real hi = -1, lo = -1;
+    for (j = step; j < HRM__CHEB; j += step) {
+        hrm_real sum = 0;
+        for (i = 0; i < HRM__CH; ++i) sum += f[i][j];
+        if (pick[0] < 0 || sum > hi) { hi = sum; pick[0] = j; }
+        if (pick[1] < 0 || sum < lo) { lo = sum; pick[1] = j; }
+    }
+    for (k = 0; k < 2; ++k) {
+        hrm_real x;
+        int at;
+        if (pick[k] < 0 || (k == 1 && pick[1] == pick[0]) || L->nmem == HRM__TMEM) continue;
+        x = hrm__cheb_at(a, b, pick[k]);
+        for (at = 0; at < L->nmem && L->mem_x[at] < x; ++at) {}
+        if (at < L->nmem && L->mem_x[at] == x) continue;
+        memmove(L->mem_x + at + 1, L->mem_x + at, sizeof(hrm_real) * (size_t)(L->nmem - at));
+        memmove(L->mem_s + at + 1, L->mem_s + at, sizeof L->mem_s[0] * (size_t)(L->nmem - at));
+        L->mem_x[at] = x;
+        for (i = 0; i < HRM__CH; ++i) L->mem_s[at][i] = f[i][pick[k]];
+        L->nmem++;
+    }
 }
 
 /* Accept one more panel after the last (the ray's first from t0), its
@@ -1253,8 +1313,15 @@ static void hrm__tau_march(hrm__ctx *c, hrm__tau *L, hrm__tcoef *co)
             co->id = id;
             L->count = id + 1;
             L->next_h = (b - a) * (fac < HRM__R(0.5) ? HRM__R(0.5) : fac > 4 ? 4 : fac);
+            for (i = 0; i < L->nmem && L->mem_x[i] <= b; ++i) {}
+            if (i > 0) { /* samples behind the march are done with */
+                memmove(L->mem_x, L->mem_x + i, sizeof(hrm_real) * (size_t)(L->nmem - i));
+                memmove(L->mem_s, L->mem_s + i, sizeof L->mem_s[0] * (size_t)(L->nmem - i));
+                L->nmem -= i;
+            }
             return;
         }
+        hrm__tau_remember(L, a, b, n, f);
         h = (b - a) * (fac < HRM__R(0.125) ? HRM__R(0.125) : fac > HRM__R(0.5) ? HRM__R(0.5) : fac);
     }
 }
@@ -1284,6 +1351,7 @@ static void hrm__tau_at(hrm__ctx *c, hrm__tau *L, hrm_real off, hrm_real tau[HRM
         lo = hi = co->id; /* the panel asked last: a march's next node */
     if (off < L->tab[lo % HRM_TAU_PANELS].a) { /* forgotten: march again */
         L->count = 0;
+        L->nmem = 0;
         hrm__forget(L);
         hrm__tau_at(c, L, off, tau);
         return;
