@@ -617,6 +617,9 @@ HRM_API int hrm_version(void);
 #define HRM_GK_INTERVALS 128 /* global Gauss-Kronrod's interval storage */
 #endif
 
+#define HRM__MEMO 32 /* abscissae the adaptive methods remember, and the
+                        ray's end in a slot of its own (the last index) */
+
 /* Method families (the method table's second column). */
 #define HRM__FIXED_QUAD 0
 #define HRM__FIXED_IVP 1
@@ -897,6 +900,13 @@ typedef struct hrm__ctx {
                               sbar * (distance) exactly */
     int have_sbar;
     hrm_real off_end;      /* s_end - t0 */
+    /* The adaptive methods' last abscissae: a retry after a rejected step,
+       or a node below the resolution of t, finds its values here instead
+       of calling the callbacks again. */
+    int use_memo, nmemo, memo_next, have_end;
+    struct {
+        hrm_real s, q[HRM__CH], st[HRM__CH], tr[HRM__CH];
+    } memo[HRM__MEMO + 1];
     int use_le, use_li;    /* source terms present */
     int per_length;        /* HRM_EMISSION_PER_LENGTH */
     int rte;               /* HRM_FORM_RTE */
@@ -1690,6 +1700,33 @@ static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
     hrm__map(c, p, &pt->off, &J);
     pt->p = p;
     s = hrm__abscissa(c, pt->off);
+    if (c->use_memo) {
+        int k, hit;
+        for (k = 0; k < c->nmemo && c->memo[k].s != s; ++k) {}
+        hit = k < c->nmemo;
+        if (!hit && c->have_end && s == c->s_end) {
+            k = HRM__MEMO;
+            hit = 1;
+        }
+        if (hit) {
+            /* the callbacks' values at s again; Tr from the node's own
+               offset (it resolves t0 + off finer than s does) */
+            if (c->homog) {
+                for (i = 0; i < HRM__CH; ++i) pt->tr[i] = HRM_EXP(-c->st[i] * pt->off);
+            } else if (c->decoupled) {
+                hrm_real tau[HRM__CH];
+                hrm__tau_at(c, c->tau, pt->off, tau);
+                for (i = 0; i < HRM__CH; ++i) pt->tr[i] = HRM_EXP(-tau[i]);
+            } else {
+                memcpy(pt->tr, c->memo[k].tr, sizeof pt->tr);
+            }
+            for (i = 0; i < HRM__CH; ++i) {
+                pt->gq[i] = c->memo[k].q[i] * J;
+                pt->gs[i] = c->need_st ? c->memo[k].st[i] * J : 0;
+            }
+            return;
+        }
+    }
     if (c->homog) {
         memcpy(sa, c->sa, sizeof sa);
         memcpy(ss, c->ss, sizeof ss);
@@ -1743,6 +1780,19 @@ static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
     for (i = 0; i < HRM__CH; ++i) {
         pt->gq[i] = q[i] * J;
         pt->gs[i] = c->need_st ? st[i] * J : 0; /* a closed form has tau already */
+    }
+    if (c->use_memo) {
+        int k = s == c->s_end ? HRM__MEMO : c->memo_next;
+        c->memo[k].s = s;
+        memcpy(c->memo[k].q, q, sizeof q);
+        memcpy(c->memo[k].st, st, sizeof st);
+        memcpy(c->memo[k].tr, pt->tr, sizeof pt->tr);
+        if (k < HRM__MEMO) {
+            c->memo_next = (k + 1) % HRM__MEMO;
+            if (c->nmemo < HRM__MEMO) c->nmemo++;
+        } else {
+            c->have_end = 1;
+        }
     }
 }
 
@@ -2802,6 +2852,7 @@ static hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, const hrm_medium *m, 
     c->homog = (m->flags & HRM_MEDIUM_HOMOGENEOUS) != 0;
     c->per_length = (m->flags & HRM_EMISSION_PER_LENGTH) != 0;
     c->rte = o->form == HRM_FORM_RTE && mi->rte;
+    c->use_memo = mi->family == HRM__ADAPTIVE_QUAD || mi->family == HRM__PAIR;
     /* Tolerances: below 100 epsilons round-off dominates any estimate. */
     c->rtol = o->rtol;
     if (c->rtol < 100 * HRM__EPS &&
