@@ -226,8 +226,34 @@
    pending intervals are taken as they are; stats.evals never exceeds
    max_evals), HRM_WARN_STORAGE
    (recursion depth 60, or 128 Gauss-Kronrod intervals), HRM_WARN_ROUNDOFF
-   (global Gauss-Kronrod: bisection no longer reduces the error).
-   Stack use: at most about 30 KB (nested Simpson's recursion); no heap.
+   (global Gauss-Kronrod: bisection no longer reduces the error),
+   HRM_WARN_TOLERANCE (see VERIFIED below).
+   Verified: the tolerance's shares are judged against a scale, half of a
+   first estimate of the total (the first step or the initial panels). A
+   first sample on a light's peak can make that estimate many times too
+   large, and the shares too loose. So at the end the estimates of what
+   was accepted are added up: where the scale proved larger than |L| and
+   they exceed atol + 3 rtol |L|, the method is run once more at the scale
+   found (its evaluations count twice), and if they still exceed it the
+   call returns HRM_WARN_TOLERANCE. (Not for Munoz's and Gonterman's
+   controllers, nor the RTE form, whose local errors do not add up.)
+   result.error: the sum of the estimates of what an adaptive method
+   accepted, per channel, whatever the status: with a warning, how far the
+   answer is believed to miss (-1 for the fixed-step methods: no
+   estimate). Bounded: an adaptive method's L always lies in [0, the
+   largest Le or Li sampled times 1 - Tr] (S / sigma_t is a weighted mean
+   of Le and Li), however a budget cut it short; what is cut off is added
+   to result.error (not with HRM_EMISSION_PER_LENGTH, whose S / sigma_t
+   has no such bound).
+   No abscissa is evaluated twice: a Runge-Kutta retry after a rejection,
+   and nodes closer than the resolution of t (far from the origin), reuse
+   the callbacks' values of the last 32 abscissae and of the ray's end.
+   What can still be missed: a feature (a light's peak, a thin layer)
+   narrower than the spacing of the first samples with nothing around it
+   never shows in any sample. Give a point light the equiangular warp.
+   Stack use: at most about 30 KB (nested Simpson's recursion) plus 12 KB
+   (the transmittance layer's panel table) and 1.3 KB (the last abscissae);
+   no heap.
 
    ==========================================================================
    IMPORTANCE SAMPLING (options.warp; Munoz 2014 s.5)
@@ -362,6 +388,7 @@ typedef HRM_REAL hrm_real;
     X(HRM_WARN_STORAGE, 3, "interval storage exhausted before the tolerance was met; best estimate returned") \
     X(HRM_WARN_RTOL_CLIPPED, 4, "rtol below 100 machine epsilons was raised to that floor") \
     X(HRM_WARN_ROUNDOFF, 5, "round-off prevents the requested tolerance; best estimate returned") \
+    X(HRM_WARN_TOLERANCE, 6, "the accepted error estimates add up to more than the tolerance allows, even when solved again at the scale found; best estimate returned with its estimated error") \
     X(HRM_ERR_NULL_ARGUMENT, -1, "a required pointer argument is NULL")      \
     X(HRM_ERR_BAD_INTERVAL, -2, "t0 not finite, t1 NaN or below t0, or t1 infinite without a warp that maps it to a finite end")       \
     X(HRM_ERR_BAD_STEPS, -3, "options.steps is negative")                    \
@@ -537,6 +564,11 @@ typedef struct hrm_result {
     hrm_real L[HRM_CHANNELS];   /* radiance added by the medium */
     hrm_real Tr[HRM_CHANNELS];  /* eye-ray transmittance Tr(t0, t1) */
     hrm_stats stats;
+    hrm_real error[HRM_CHANNELS]; /* the adaptive methods' estimate of |L -
+                                     exact|: the error estimates of what
+                                     they accepted, whatever the status (a
+                                     warning's estimated miss); -1: none
+                                     (fixed-step methods, errors) */
 } hrm_result;
 
 /* The defaults of `method`: what an all-zero hrm_options means, with the
@@ -904,6 +936,10 @@ typedef struct hrm__ctx {
        or a node below the resolution of t, finds its values here instead
        of calling the callbacks again. */
     int use_memo, nmemo, memo_next, have_end;
+    hrm_real err_acc[HRM__CH]; /* adaptive: the accepted error estimates */
+    hrm_real src_max[HRM__CH]; /* the largest Le or Li sampled: S / sigma_t
+                                  is at most that (a weighted mean of them) */
+    int scale_fixed;           /* the scale is the solution's, not a pilot's */
     struct {
         hrm_real s, q[HRM__CH], st[HRM__CH], tr[HRM__CH];
     } memo[HRM__MEMO + 1];
@@ -1769,12 +1805,18 @@ static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
     if (em) {
         m->Le(m->user, s, v);
         hrm__check(c, v, 0);
-        for (i = 0; i < HRM__CH; ++i) q[i] += (c->per_length ? v[i] : sa[i] * v[i]);
+        for (i = 0; i < HRM__CH; ++i) {
+            q[i] += (c->per_length ? v[i] : sa[i] * v[i]);
+            if (v[i] > c->src_max[i]) c->src_max[i] = v[i];
+        }
     }
     if (sc) {
         m->Li(m->user, s, v);
         hrm__check(c, v, 0);
-        for (i = 0; i < HRM__CH; ++i) q[i] += ss[i] * v[i];
+        for (i = 0; i < HRM__CH; ++i) {
+            q[i] += ss[i] * v[i];
+            if (v[i] > c->src_max[i]) c->src_max[i] = v[i];
+        }
     }
     c->stats.evals += em | sc;
     for (i = 0; i < HRM__CH; ++i) {
@@ -2277,12 +2319,20 @@ static int hrm__rough_ok(hrm__ctx *c, hrm_real ratio, hrm_real parent, hrm_real 
 static void hrm__set_scale(hrm__ctx *c, const hrm_real *total)
 {
     int n;
+    if (c->scale_fixed) return; /* solving again at the scale found */
     for (n = 0; n < HRM__NY; ++n) c->scale[n] = HRM_FABS(total[n]) / 2;
 }
 
 static hrm_real hrm__clamp(hrm_real x, hrm_real lo, hrm_real hi)
 {
     return x < lo ? lo : x > hi ? hi : x;
+}
+
+/* An accepted step or interval adds its estimate of L's error. */
+static void hrm__accepted(hrm__ctx *c, const hrm_real *err)
+{
+    int i;
+    for (i = 0; i < HRM__CH; ++i) c->err_acc[i] += HRM_FABS(err[HRM__CH + i]);
 }
 
 static void hrm__warn(hrm__ctx *c, hrm_status w)
@@ -2368,6 +2418,9 @@ static void hrm__ivp_adaptive(hrm__ctx *c, const hrm__tableau *tb, hrm_control c
         }
         if (accept) {
             memcpy(y, ynew, sizeof ynew);
+            /* a rough step (a jump) or one at h_min was judged by the
+               pair's own estimate */
+            hrm__accepted(c, control == HRM_CONTROL_PI && accept == 1 && hs > c->h_min ? both : err);
             p = q;
             if (have) start = end;
             c->stats.steps++;
@@ -2473,6 +2526,7 @@ static void hrm__nested_simpson(hrm__ctx *c, int panels, hrm_real acc[HRM__NY])
             }
             if (!split) {
                 memcpy(acc, y1, sizeof y1);
+                hrm__accepted(c, err);
                 c->stats.steps++;
                 if (top == 0) break;
                 cur = stack[--top];
@@ -2627,6 +2681,7 @@ static void hrm__gk_local(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
                 c->stats.rejected++;
             } else {
                 memcpy(acc, y1, sizeof y1);
+                hrm__accepted(c, ek);
                 c->stats.steps++;
             }
         }
@@ -2680,6 +2735,7 @@ static void hrm__gk_global(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
             done &= EL[ch] <= tolL[ch] && Et[ch] <= tolt[ch];
             acc[ch] = tau[ch];
             acc[HRM__CH + ch] = L[ch];
+            c->err_acc[ch] = EL[ch]; /* the estimate of what it returns */
         }
         if (done || stop) return;
         hrm__fill(tau, HRM__CH, 0);
@@ -2919,6 +2975,58 @@ static hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, const hrm_medium *m, 
     return HRM_OK;
 }
 
+static void hrm__adaptive_once(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM__NY])
+{
+    const hrm__method_info *mi = &hrm__methods[o->method];
+    hrm__fill(c->err_acc, HRM__CH, 0);
+    c->rough_left = HRM__JUMP;
+    if (o->method == HRM_NESTED_SIMPSON)
+        hrm__nested_simpson(c, o->steps, y);
+    else if (o->method == HRM_GAUSS_KRONROD && o->gk_mode == HRM_GK_LOCAL)
+        hrm__gk_local(c, o->steps, y);
+    else if (o->method == HRM_GAUSS_KRONROD)
+        hrm__gk_global(c, o->steps, y);
+    else
+        hrm__ivp_adaptive(c, mi->tb, o->control, o->h0, y);
+}
+
+/* The adaptive methods, verified: the shares of the tolerance their steps
+   accepted add up to at most atol + 2 rtol |L|, and rtol |L| more for
+   the rough steps (TOLERANCES), if the scale they judged by was |L| / 2.
+   A first estimate of the total that proved too large (a pilot sample on
+   a light's peak) makes the accepted estimates add up to more: the
+   method is run once more at the scale found, and if that still does not
+   hold, HRM_WARN_TOLERANCE says so with the estimate in result.error.
+   (Munoz's and Gonterman's controllers keep their own definitions.) */
+static void hrm__adaptive(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM__NY])
+{
+    const hrm__method_info *mi = &hrm__methods[o->method];
+    int pass, n;
+    if ((mi->family == HRM__PAIR && o->control != HRM_CONTROL_PI) || c->rte) {
+        /* the RTE form amplifies local errors: no sum of them bounds L's */
+        hrm__adaptive_once(c, o, y);
+        return;
+    }
+    for (pass = 0; pass < 2; ++pass) {
+        int held = 1;
+        hrm__adaptive_once(c, o, y);
+        if (c->status != HRM_OK || (c->warning != HRM_OK && c->warning != HRM_WARN_RTOL_CLIPPED))
+            return; /* a warning already says the tolerance was missed */
+        /* only a scale above |L| can have let more through */
+        for (n = 0; n < HRM__CH; ++n)
+            held &= c->scale[HRM__CH + n] <= HRM_FABS(y[HRM__CH + n]) ||
+                    c->err_acc[n] <= c->atol + 3 * c->rtol * HRM_FABS(y[HRM__CH + n]) +
+                                         16 * HRM__EPS * HRM_FABS(y[HRM__CH + n]);
+        if (held) return;
+        if (pass == 1 || c->stats.evals >= c->max_evals / 2) {
+            hrm__warn(c, HRM_WARN_TOLERANCE);
+            return;
+        }
+        for (n = 0; n < HRM__NY; ++n) c->scale[n] = HRM_FABS(y[n]) / 2;
+        c->scale_fixed = 1;
+    }
+}
+
 /* Run the method: y receives (tau, L), or (Tr, L) in the RTE form. */
 static void hrm__dispatch(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM__NY])
 {
@@ -2937,39 +3045,61 @@ static void hrm__dispatch(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM__NY]
     case HRM__FIXED_IVP:
         hrm__ivp_fixed(c, mi->tb, o->method == HRM_ADAMS_BASHFORTH, o->steps, y);
         break;
-    case HRM__ADAPTIVE_QUAD:
-        if (o->method == HRM_NESTED_SIMPSON)
-            hrm__nested_simpson(c, o->steps, y);
-        else if (o->gk_mode == HRM_GK_LOCAL)
-            hrm__gk_local(c, o->steps, y);
-        else
-            hrm__gk_global(c, o->steps, y);
-        break;
     default:
-        hrm__ivp_adaptive(c, mi->tb, o->control, o->h0, y);
+        hrm__adaptive(c, o, y);
     }
 }
 
 /* Tr(t0, t1) and the status: a closed form is exact in every method and
    form, the layer's tau is the one the nodes saw. */
-static hrm_status hrm__finish(hrm__ctx *c, const hrm_real y[HRM__NY], hrm_real L[HRM__CH],
-                              hrm_real Tr[HRM__CH])
+static hrm_status hrm__finish(hrm__ctx *c, const hrm_options *o, const hrm_real y[HRM__NY],
+                              hrm_real L[HRM__CH], hrm_real Tr[HRM__CH], hrm_real err[HRM__CH])
 {
+    int fam = hrm__methods[o->method].family, adaptive = fam == HRM__ADAPTIVE_QUAD || fam == HRM__PAIR;
     int i;
+    hrm_real absorbed[HRM__CH]; /* 1 - Tr, without cancellation where tau is known */
     memcpy(L, y + HRM__CH, sizeof(hrm_real) * HRM__CH);
     if (c->decoupled) {
         hrm__tau_at(c, c->tau, c->off_end, Tr);
-        for (i = 0; i < HRM__CH; ++i) Tr[i] = HRM_EXP(-Tr[i]);
+        for (i = 0; i < HRM__CH; ++i) {
+            absorbed[i] = -HRM_EXPM1(-Tr[i]);
+            Tr[i] = HRM_EXP(-Tr[i]);
+        }
     } else if (c->homog || c->m->transmittance) {
         hrm__closed_tr(c, Tr);
+        for (i = 0; i < HRM__CH; ++i)
+            absorbed[i] = c->homog ? -HRM_EXPM1(-c->st[i] * c->off_end) : 1 - Tr[i];
     } else if (c->rte) {
         memcpy(Tr, y, sizeof(hrm_real) * HRM__CH); /* y holds (Tr, L) */
+        for (i = 0; i < HRM__CH; ++i) absorbed[i] = 1 - Tr[i];
     } else {
-        for (i = 0; i < HRM__CH; ++i) Tr[i] = HRM_EXP(-y[i]);
+        for (i = 0; i < HRM__CH; ++i) {
+            absorbed[i] = -HRM_EXPM1(-y[i]);
+            Tr[i] = HRM_EXP(-y[i]);
+        }
+    }
+    for (i = 0; i < HRM__CH; ++i) err[i] = adaptive ? c->err_acc[i] : -1;
+    if (adaptive && !c->rte && !c->per_length) {
+        /* physically bounded whatever a budget cut short: 0 <= L <= the
+           largest S / sigma_t (at most the largest Le or Li sampled, S /
+           sigma_t being their weighted mean) times 1 - Tr; what is cut off
+           counts in the estimate */
+        for (i = 0; i < HRM__CH; ++i) {
+            hrm_real top = c->src_max[i] * absorbed[i] * (1 + 16 * HRM__EPS);
+            if (L[i] > top) {
+                err[i] += L[i] - top;
+                L[i] = top;
+            }
+            if (L[i] < 0) {
+                err[i] -= L[i];
+                L[i] = 0;
+            }
+        }
     }
     if (c->status != HRM_OK) {
         hrm__fill(L, HRM__CH, 0);
         hrm__fill(Tr, HRM__CH, 1);
+        hrm__fill(err, HRM__CH, -1);
         return c->status;
     }
     return c->warning;
@@ -2978,8 +3108,8 @@ static hrm_status hrm__finish(hrm__ctx *c, const hrm_real y[HRM__NY], hrm_real L
 /* The one solve behind hrm_solve and hrm_transmittance (tr_only: no
    source, so only sigma_t is integrated). */
 static hrm_status hrm__run(const hrm_medium *m, hrm_real t0, hrm_real t1,
-                           const hrm_options *in, int tr_only,
-                           hrm_real L[HRM__CH], hrm_real Tr[HRM__CH], hrm_stats *stats)
+                           const hrm_options *in, int tr_only, hrm_real L[HRM__CH],
+                           hrm_real Tr[HRM__CH], hrm_real err[HRM__CH], hrm_stats *stats)
 {
     hrm__ctx c;
     hrm__tau layer;
@@ -2991,20 +3121,26 @@ static hrm_status hrm__run(const hrm_medium *m, hrm_real t0, hrm_real t1,
     memset(stats, 0, sizeof *stats);
     hrm__fill(L, HRM__CH, 0);
     hrm__fill(Tr, HRM__CH, 1);
+    hrm__fill(err, HRM__CH, -1);
     /* t1 = +inf is valid under a warp that maps it to a finite end. */
     if (!HRM__FINITE(t0) || !(t1 >= t0) || (!HRM__FINITE(t1) && t0 == t1)) return HRM_ERR_BAD_INTERVAL;
     st = hrm__resolve(in, &o);
     if (st != HRM_OK) return st;
     st = hrm__setup(&c, &layer, m, t0, t1, &o, tr_only);
     *stats = c.stats;
-    if (st != HRM_OK || t0 == t1) return st;
+    if (st != HRM_OK) return st;
+    if (t0 == t1) {
+        int fam = hrm__methods[o.method].family;
+        if (fam == HRM__ADAPTIVE_QUAD || fam == HRM__PAIR) hrm__fill(err, HRM__CH, 0);
+        return st;
+    }
     if (!c.use_le && !c.use_li && c.closed) {
         /* Nothing to integrate: Tr alone, from the layer or a closed form. */
         hrm__fill(y, HRM__NY, 0);
     } else {
         hrm__dispatch(&c, &o, y);
     }
-    st = hrm__finish(&c, y, L, Tr);
+    st = hrm__finish(&c, &o, y, L, Tr, err);
     *stats = c.stats;
     return st;
 }
@@ -3018,11 +3154,12 @@ HRM__DEF hrm_status hrm_solve(const hrm_medium *medium, hrm_real t0, hrm_real t1
     if (!medium) {
         memset(result, 0, sizeof *result);
         hrm__fill(result->Tr, HRM__CH, 1);
+        hrm__fill(result->error, HRM__CH, -1);
         return HRM_ERR_NULL_ARGUMENT;
     }
     /* Work on a local copy: result may alias nothing we read, and a failed
        solve leaves exactly the defined error result. */
-    st = hrm__run(medium, t0, t1, options, 0, r.L, r.Tr, &r.stats);
+    st = hrm__run(medium, t0, t1, options, 0, r.L, r.Tr, r.error, &r.stats);
     *result = r;
     return st;
 }
@@ -3031,7 +3168,7 @@ HRM__DEF hrm_status hrm_transmittance(const hrm_medium *medium, hrm_real t0,
                                       hrm_real t1, const hrm_options *options,
                                       hrm_real Tr[HRM_CHANNELS], hrm_stats *stats)
 {
-    hrm_real L[HRM__CH], out[HRM__CH];
+    hrm_real L[HRM__CH], out[HRM__CH], err[HRM__CH];
     hrm_stats s;
     hrm_status st;
     if (!Tr) return HRM_ERR_NULL_ARGUMENT;
@@ -3040,7 +3177,7 @@ HRM__DEF hrm_status hrm_transmittance(const hrm_medium *medium, hrm_real t0,
         if (stats) memset(stats, 0, sizeof *stats);
         return HRM_ERR_NULL_ARGUMENT;
     }
-    st = hrm__run(medium, t0, t1, options, 1, L, out, &s);
+    st = hrm__run(medium, t0, t1, options, 1, L, out, err, &s);
     memcpy(Tr, out, sizeof out);
     if (stats) *stats = s;
     return st;
