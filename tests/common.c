@@ -443,6 +443,27 @@ double rel_err_L(const problem *p, double t0, double t1, const hrm_result *r)
     return e;
 }
 
+typedef struct exact_f_ctx {
+    const problem *p;
+    int c;
+    double t0;
+} exact_f_ctx;
+
+static double exact_f_of(const void *ctx, double s)
+{
+    const exact_f_ctx *x = (const exact_f_ctx *)ctx;
+    return exact_f(x->p, x->c, x->t0, s);
+}
+
+double gl_exact_f(const problem *p, int c, double t0, double a, double b, int panels)
+{
+    exact_f_ctx x;
+    x.p = p;
+    x.c = c;
+    x.t0 = t0;
+    return gl_integrate(exact_f_of, &x, a, b, panels, 10, 0, 0);
+}
+
 double rel_err_Tr(const problem *p, double t0, double t1, const hrm_real *Tr)
 {
     double e = 0;

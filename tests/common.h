@@ -209,6 +209,11 @@ double max_tau(const problem *p, double t0, double t1);         /* over channels
 double rel_err_L(const problem *p, double t0, double t1, const hrm_result *r);
 double rel_err_Tr(const problem *p, double t0, double t1, const hrm_real *Tr);
 
+/* The integral of exact_f (Tr(t0, s) S(s), channel c) over [a, b] by
+   composite 10-point Gauss-Legendre in `panels` panels: the reference of
+   scenes whose L has no closed form. */
+double gl_exact_f(const problem *p, int c, double t0, double a, double b, int panels);
+
 /* ------------------------------------------------------------------------
    Methods, options, solving, results
    ------------------------------------------------------------------------ */

@@ -660,32 +660,17 @@ static void ad_transmittance(void)
 
 /* ======================================================================== */
 
-/* Integrand Tr S of a problem for gl_integrate (channel in ctx). */
-typedef struct ad_f_ctx {
-    const problem *p;
-    int c;
-} ad_f_ctx;
-
-static double ad_f(const void *ctx, double s)
-{
-    const ad_f_ctx *x = (const ad_f_ctx *)ctx;
-    return exact_f(x->p, x->c, 0, s);
-}
-
 /* L over [0, 10] of a point light D from the ray at delta: Gauss-Legendre
    split at the peak, panels of width D/5 within 20 D of it (the Lorentzian
    is analytic there at scale D) and 0.01 outside: two resolutions agree to
    1e-13 here. */
 static double ad_point_ref(const problem *p, int c, double D, double delta)
 {
-    ad_f_ctx x;
     double lo = delta - 20 * D > 0 ? delta - 20 * D : 0, hi = delta + 20 * D;
-    x.p = p;
-    x.c = c;
-    return gl_integrate(ad_f, &x, 0, lo, (int)ceil(lo / 0.01) + 1, 10, 0, 0) +
-           gl_integrate(ad_f, &x, lo, delta, (int)ceil((delta - lo) / (D / 5)), 10, 0, 0) +
-           gl_integrate(ad_f, &x, delta, hi, 100, 10, 0, 0) +
-           gl_integrate(ad_f, &x, hi, 10, (int)ceil((10 - hi) / 0.01), 10, 0, 0);
+    return gl_exact_f(p, c, 0, 0, lo, (int)ceil(lo / 0.01) + 1) +
+           gl_exact_f(p, c, 0, lo, delta, (int)ceil((delta - lo) / (D / 5))) +
+           gl_exact_f(p, c, 0, delta, hi, 100) +
+           gl_exact_f(p, c, 0, hi, 10, (int)ceil((10 - hi) / 0.01));
 }
 
 /* Verified tolerances, the error estimate, bounded budgets.
