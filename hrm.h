@@ -145,7 +145,10 @@
                                                    same 3 points (Munoz eq. 7);
                                                    2*steps+1 to start (4
                                                    panels by default, <= 32)
-   HRM_GAUSS_KRONROD    22     15 per interval     G7/K15; gk_mode GLOBAL
+   HRM_GAUSS_KRONROD    22     15 per interval     G7/K15, and the ray's two
+                               + 2                 ends once (a layer at the
+                                                   camera or surface is seen);
+                                                   gk_mode GLOBAL
                                                    (QUADPACK QAG: worst
                                                    interval first, <= 128
                                                    intervals; <= 32 to start)
@@ -909,7 +912,7 @@ static const hrm__method_info hrm__methods[HRM_METHOD_COUNT] = {
    s = t0 + off(p) (the identity, or a warp); gs and gq are already multiplied
    by ds/dp, so every rule below works in p alone. */
 typedef struct hrm__pt {
-    hrm_real p, off;
+    hrm_real p, off, J;    /* J = ds/dp */
     hrm_real gs[HRM__CH];  /* sigma_t(s) * ds/dp */
     hrm_real gq[HRM__CH];  /* S(s) * ds/dp */
     hrm_real tr[HRM__CH];  /* Tr(t0, s), when the medium has a closed form */
@@ -940,6 +943,8 @@ typedef struct hrm__ctx {
     hrm_real src_max[HRM__CH]; /* the largest Le or Li sampled: S / sigma_t
                                   is at most that (a weighted mean of them) */
     int scale_fixed;           /* the scale is the solution's, not a pilot's */
+    int have_ends;             /* Gauss-Kronrod: the ray's ends sampled */
+    hrm__pt end[2];            /* at pa and at pb */
     struct {
         hrm_real s, q[HRM__CH], st[HRM__CH], tr[HRM__CH];
     } memo[HRM__MEMO + 1];
@@ -1735,6 +1740,7 @@ static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
 
     hrm__map(c, p, &pt->off, &J);
     pt->p = p;
+    pt->J = J;
     s = hrm__abscissa(c, pt->off);
     if (c->use_memo) {
         int k, hit;
@@ -2567,7 +2573,7 @@ static void hrm__gk15(hrm__ctx *c, hrm_real a, hrm_real b, const hrm_real *tau_a
     }
     for (n = 0; n < HRM__NY; ++n) {
         int ch = n % HRM__CH, is_tau = n < HRM__CH;
-        hrm_real f[15], rk = 0, rg = 0, rabs = 0, rasc = 0, mean;
+        hrm_real f[15], rk = 0, rg = 0, rabs = 0, rasc = 0, mean, eend;
         if (is_tau && !c->coupled) {
             K[n] = ek[n] = eq[n] = 0;
             continue;
@@ -2594,6 +2600,33 @@ static void hrm__gk15(hrm__ctx *c, hrm_real a, hrm_real b, const hrm_real *tau_a
         K[n] = rk * hl;
         if (is_tau) K[n] += c->sbar[ch] * (off_b - off_a);
         ek[n] = HRM_FABS((rk - rg) * hl);
+        eend = 0;
+        if (!is_tau && c->have_ends) {
+            /* An interval at an end of the ray sees the sample there: S at
+               the end against its linear extrapolation from the two nearest
+               nodes; a mismatch over the unsampled stretch (a thin layer
+               at the camera or at the surface) counts as error. */
+            int e;
+            for (e = 0; e < 2; ++e) {
+                int j0 = e ? 14 : 0, j1 = e ? 13 : 1;
+                hrm_real xe = e ? 1 : -1, s0, s1, se, gap, att;
+                /* (an infinite ray's far end is where the warp stops:
+                   no surface, no layer there) */
+                if (e ? b != c->pb || !HRM__FINITE(c->T) : a != c->pa) continue;
+                s0 = pt[j0].J > 0 ? pt[j0].gq[ch] / pt[j0].J : 0;
+                s1 = pt[j1].J > 0 ? pt[j1].gq[ch] / pt[j1].J : 0;
+                se = c->end[e].J > 0 ? c->end[e].gq[ch] / c->end[e].J : 0;
+                gap = HRM_FABS(xe - hrm__gk_x[j0]) * HRM_FABS(hl);
+                /* weighed by the attenuation at the nearest node, as
+                   that node's own value is (absolute in closed form,
+                   relative to the interval's start when coupled) */
+                att = pt[j0].gq[ch] != 0 ? f[j0] / pt[j0].gq[ch]
+                    : c->closed ? pt[j0].tr[ch] : 1;
+                eend += HRM_FABS(se - (s0 + (s0 - s1) * (xe - hrm__gk_x[j0]) /
+                                               (hrm__gk_x[j0] - hrm__gk_x[j1]))) *
+                        pt[j0].J * gap * att;
+            }
+        }
         eq[n] = ek[n];
         rasc *= HRM_FABS(hl);
         rabs *= HRM_FABS(hl);
@@ -2603,7 +2636,19 @@ static void hrm__gk15(hrm__ctx *c, hrm_real a, hrm_real b, const hrm_real *tau_a
             eq[n] = rasc * (r < 1 ? r : 1);
         }
         if (eq[n] < 50 * HRM__EPS * rabs) eq[n] = 50 * HRM__EPS * rabs;
+        ek[n] += eend;
+        eq[n] += eend;
     }
+}
+
+/* The ray's two ends, sampled once: Gauss-Kronrod's nodes never reach an
+   interval's ends, so without them a thin layer at the camera or at the
+   surface could pass unseen (hrm__gk15). Two evaluations. */
+static void hrm__gk_ends(hrm__ctx *c)
+{
+    hrm__eval(c, c->pa, &c->end[0]);
+    hrm__eval(c, c->pb, &c->end[1]);
+    c->have_ends = 1;
 }
 
 /* Gauss-Kronrod, Munoz's local mode: an interval whose |K - G| exceeds its
@@ -2621,6 +2666,7 @@ static void hrm__gk_local(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
     int top, k, i, ch;
 
     if (n0 > HRM_GK_INITIAL) n0 = HRM_GK_INITIAL;
+    hrm__gk_ends(c);
     hrm__fill(zero, HRM__NY, 0);
     hrm__fill(tot, HRM__NY, 0);
     for (k = 0; k < n0; ++k) {
@@ -2703,6 +2749,7 @@ static void hrm__gk_global(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
     hrm_real zero[HRM__NY], span = c->pb - c->pa, ek[HRM__NY];
     int n = n0 < HRM_GK_INTERVALS ? n0 : HRM_GK_INTERVALS, i, j, ch, roundoff = 0, stop = 0;
 
+    hrm__gk_ends(c);
     hrm__fill(zero, HRM__NY, 0);
     for (i = 0; i < n; ++i) {
         iv[i].a = c->pa + span * ((hrm_real)i / (hrm_real)n);
@@ -2885,7 +2932,7 @@ static hrm_status hrm__resolve(const hrm_options *in, hrm_options *o)
     /* A budget below one step of the method could not be honoured. */
     if (o->max_evals < (mi->family == HRM__PAIR ? hrm__stage_cost(mi->tb) + 1L
                         : o->method == HRM_NESTED_SIMPSON ? 2L * o->steps + 1
-                        : o->method == HRM_GAUSS_KRONROD ? 15L * o->steps : 0L))
+                        : o->method == HRM_GAUSS_KRONROD ? 15L * o->steps + 2 : 0L))
         return HRM_ERR_BAD_OPTION;
     return HRM_OK;
 }
