@@ -141,10 +141,12 @@
    HRM_ADAMS_BASHFORTH  4      N + 3 (N >= 4)      4-step, started with 3 RK4
                                                    steps; 1 new per step
    Adaptive (rtol, atol, h_min, h_max, max_evals; see TOLERANCES):
-   HRM_NESTED_SIMPSON   4      2 per split         Simpson vs trapezoid on the
-                                                   same 3 points (Munoz eq. 7);
-                                                   2*steps+1 to start (4
-                                                   panels by default, <= 32)
+   HRM_NESTED_SIMPSON   6      2 per interval      Simpson on the halves vs
+                                                   on the whole (Lyness), the
+                                                   Richardson-corrected halves
+                                                   returned; 2*steps+1 to
+                                                   start (4 panels by
+                                                   default, <= 32)
    HRM_GAUSS_KRONROD    22     15 per interval     G7/K15, and the ray's two
                                + 2                 ends once (a layer at the
                                                    camera or surface is seen);
@@ -206,10 +208,11 @@
    - a step or interval whose error does not shrink with it (a jump such as
      a shadow edge, or noise) may take rtol/16 of |L|, at most 16 times per
      call, instead of descending to h_min.
-   The estimates are those of the lower-order rule (Simpson vs trapezoid,
+   The estimates are those of the lower-order rule (Simpson on the halves,
    G7 vs K15, the embedded solution), while the higher-order result is
-   returned, so the achieved error is usually below rtol, far below for
-   nested Simpson and Gauss-Kronrod at tight tolerances (bench/ measures
+   returned (the Richardson-corrected halves, K15, the propagated
+   solution), so the achieved error is usually below rtol, far below for
+   Gauss-Kronrod at tight tolerances (bench/ measures
    achieved error against rtol for every method and scene). The
    Runge-Kutta pairs under the default controller also read the stage
    values as samples of L' at the step's distinct nodes: the top term of
@@ -2447,11 +2450,15 @@ static void hrm__ivp_adaptive(hrm__ctx *c, const hrm__tableau *tb, hrm_control c
 /* ---------------------------------------------------------------------- */
 
 
-/* Nested Simpson (Munoz 2014 eq. 7): Simpson against the trapezoid rule on
-   the same three points, e = |S - T|; a refused interval is halved and
-   keeps its three samples, so a split costs two new evaluations. Intervals
-   are finished left to right, so tau at an interval's left end is final and
-   its nodes' tau come from its own sigma_t samples as in hrm__simpson. */
+/* Nested Simpson: each interval's three samples and its two quarter
+   points give Simpson on the whole and on the halves, whose difference
+   estimates the halves' error (Lyness 1969); the Richardson-corrected
+   halves are returned. A refused interval is split into its halves, which
+   keep all five samples: every interval costs its two quarter points.
+   (Munoz 2014 eq. 7 compares Simpson with the trapezoid rule, two orders
+   too pessimistic.) Intervals are finished left to right, so tau at an
+   interval's left end is final and its nodes' tau come from its own
+   sigma_t samples as in hrm__simpson. */
 typedef struct hrm__ns_iv {
     hrm__pt a, m, b;
     hrm_real parent; /* the error ratio of the interval it was split from */
@@ -2515,40 +2522,63 @@ static void hrm__nested_simpson(hrm__ctx *c, int panels, hrm_real acc[HRM__NY])
         cur.depth = 0;
         cur.parent = 0;
         for (;;) {
-            hrm_real H = cur.b.p - cur.a.p, y1[HRM__NY], ratio;
-            int split;
+            hrm_real H = cur.b.p - cur.a.p, y1[HRM__NY], ratio, vl[HRM__NY], vr[HRM__NY];
+            hrm_real tm[HRM__NY], e2[HRM__NY];
+            hrm__pt ql, qr;
+            int split, last = cur.depth >= HRM_MAX_DEPTH || HRM_FABS(H) / 4 < c->h_min;
             hrm__ns_rule(c, &cur.a, &cur.m, &cur.b, acc, val, err);
-            for (i = 0; i < HRM__NY; ++i) y1[i] = acc[i] + val[i];
-            ratio = hrm__ratio(c, HRM_CONTROL_PI, cur.a.p, cur.b.p, acc, y1, err);
-            split = ratio > 1 && !hrm__rough_ok(c, ratio, cur.parent, cur.a.p, cur.b.p, acc, y1, err);
-            if (split && (cur.depth >= HRM_MAX_DEPTH || HRM_FABS(H) / 2 < c->h_min)) {
-                if (hrm__ratio(c, HRM__JUMP, cur.a.p, cur.b.p, acc, y1, err) > 1)
+            if (last || c->stats.evals + 2 > c->max_evals) {
+                /* no quarter points: the interval as it is, judged by
+                   Simpson against the trapezoid on its three points */
+                for (i = 0; i < HRM__NY; ++i) y1[i] = acc[i] + val[i];
+                if (!last) hrm__warn(c, HRM_WARN_MAX_EVALS);
+                else if (hrm__ratio(c, HRM__JUMP, cur.a.p, cur.b.p, acc, y1, err) > 1)
                     hrm__warn(c, cur.depth >= HRM_MAX_DEPTH ? HRM_WARN_STORAGE : HRM_WARN_H_MIN);
                 split = 0;
-            }
-            if (split && c->stats.evals + 2 > c->max_evals) {
-                hrm__warn(c, HRM_WARN_MAX_EVALS);
-                split = 0;
+            } else {
+                /* Simpson on the two halves (S2) against Simpson on the
+                   whole (S1): S2's error is about (S2 - S1) / 15, and S2 +
+                   (S2 - S1) / 15 is returned (Richardson; Lyness 1969) */
+                hrm__eval(c, (cur.a.p + cur.m.p) / 2, &ql);
+                hrm__eval(c, (cur.m.p + cur.b.p) / 2, &qr);
+                hrm__ns_rule(c, &cur.a, &ql, &cur.m, acc, vl, e2);
+                for (i = 0; i < HRM__NY; ++i) tm[i] = acc[i] + vl[i];
+                hrm__ns_rule(c, &cur.m, &qr, &cur.b, tm, vr, e2);
+                for (i = 0; i < HRM__NY; ++i) {
+                    hrm_real s2 = vl[i] + vr[i];
+                    err[i] = (s2 - val[i]) / 15;
+                    /* tau stays the halves' sum: nondecreasing */
+                    y1[i] = acc[i] + s2 + (i >= HRM__CH ? err[i] : 0);
+                }
+                ratio = hrm__ratio(c, HRM_CONTROL_PI, cur.a.p, cur.b.p, acc, y1, err);
+                split = ratio > 1 && !hrm__rough_ok(c, ratio, cur.parent, cur.a.p, cur.b.p, acc, y1, err);
+                if (split && (cur.depth + 1 >= HRM_MAX_DEPTH || HRM_FABS(H) / 8 < c->h_min)) {
+                    /* its halves could not be refined further either */
+                    if (hrm__ratio(c, HRM__JUMP, cur.a.p, cur.b.p, acc, y1, err) > 1)
+                        hrm__warn(c, cur.depth + 1 >= HRM_MAX_DEPTH ? HRM_WARN_STORAGE : HRM_WARN_H_MIN);
+                    split = 0;
+                }
+                if (split) {
+                    hrm__ns_iv right;
+                    right.a = cur.m;
+                    right.m = qr;
+                    right.b = cur.b;
+                    right.depth = cur.depth + 1;
+                    right.parent = ratio;
+                    cur.b = cur.m;
+                    cur.m = ql;
+                    cur.depth++;
+                    cur.parent = ratio;
+                    stack[top++] = right;
+                    c->stats.rejected++;
+                }
             }
             if (!split) {
                 memcpy(acc, y1, sizeof y1);
                 hrm__accepted(c, err);
                 c->stats.steps++;
-                if (top == 0) break;
+                if (c->status != HRM_OK || top == 0) break;
                 cur = stack[--top];
-            } else {
-                hrm__ns_iv right;
-                right.a = cur.m;
-                right.b = cur.b;
-                right.depth = cur.depth + 1;
-                right.parent = ratio;
-                hrm__eval(c, (cur.m.p + cur.b.p) / 2, &right.m);
-                cur.b = cur.m;
-                hrm__eval(c, (cur.a.p + cur.b.p) / 2, &cur.m);
-                cur.depth++;
-                cur.parent = ratio;
-                stack[top++] = right;
-                c->stats.rejected++;
             }
             if (c->status != HRM_OK) return;
         }
