@@ -423,7 +423,7 @@ typedef enum hrm_status {
     X(HRM_EULER, "euler", HRM__FIXED_IVP, 32, 1, 1, &hrm__euler)               \
     X(HRM_RK4, "rk4", HRM__FIXED_IVP, 32, 4, 1, &hrm__rk4)                     \
     X(HRM_ADAMS_BASHFORTH, "adams-bashforth", HRM__FIXED_IVP, 32, 4, 1, &hrm__rk4) \
-    X(HRM_NESTED_SIMPSON, "nested-simpson", HRM__ADAPTIVE_QUAD, 4, 4, 0, 0)    \
+    X(HRM_NESTED_SIMPSON, "nested-simpson", HRM__ADAPTIVE_QUAD, 4, 6, 0, 0)    \
     X(HRM_GAUSS_KRONROD, "gauss-kronrod", HRM__ADAPTIVE_QUAD, 1, 22, 0, 0)     \
     X(HRM_BOGACKI_SHAMPINE, "bogacki-shampine", HRM__PAIR, 0, 3, 1, &hrm__bs)  \
     X(HRM_DORMAND_PRINCE, "dormand-prince", HRM__PAIR, 0, 5, 1, &hrm__dp)      \
@@ -2546,9 +2546,15 @@ static void hrm__nested_simpson(hrm__ctx *c, int panels, hrm_real acc[HRM__NY])
                 hrm__ns_rule(c, &cur.m, &qr, &cur.b, tm, vr, e2);
                 for (i = 0; i < HRM__NY; ++i) {
                     hrm_real s2 = vl[i] + vr[i];
-                    err[i] = (s2 - val[i]) / 15;
                     /* tau stays the halves' sum: nondecreasing */
-                    y1[i] = acc[i] + s2 + (i >= HRM__CH ? err[i] : 0);
+                    y1[i] = acc[i] + s2 + (i >= HRM__CH ? (s2 - val[i]) / 15 : 0);
+                    /* (S2 - S1) / 15 is S2's error once the halves are in
+                       the asymptotic regime; an oscillation that a few
+                       samples alias can make S1 and S2 agree before it.
+                       A divisor of 5 keeps a factor 3 of margin: on the
+                       bench's smooth scenes (rtol 1e-2..1e-10) the worst
+                       HRM_OK run is at 1.0 rtol, 11 with 15. */
+                    err[i] = (s2 - val[i]) / 5;
                 }
                 ratio = hrm__ratio(c, HRM_CONTROL_PI, cur.a.p, cur.b.p, acc, y1, err);
                 split = ratio > 1 && !hrm__rough_ok(c, ratio, cur.parent, cur.a.p, cur.b.p, acc, y1, err);
