@@ -116,6 +116,9 @@ typedef struct bench_row {
     double param;        /* N, or rtol */
     hrm_stats stats;     /* of one ray (the first seed) */
     double rel_error;    /* RMS over seeds for random methods */
+    double est_error;    /* adaptive methods: hrm's own estimate of it
+                            (result.error over |Lref|, the worst channel,
+                            first seed); NaN for the fixed-step methods */
     hrm_status status;   /* an error if any seed gave one, else the largest warning */
     double ns_per_ray;   /* NaN: not timed */
 } bench_row;
@@ -263,7 +266,7 @@ typedef struct bench_out {
 } bench_out;
 
 #define BENCH_CSV_HEADER \
-    "scene,method,warp,medium,param,evals,medium_evals,steps,rejected,rel_error,status,ns_per_ray"
+    "scene,method,warp,medium,param,evals,medium_evals,steps,rejected,rel_error,status,ns_per_ray,est_error"
 
 void bench_report_header(const bench_state *st);
 void bench_report_scene(const bench_state *st, int si);   /* after bench_run_scene */

@@ -416,7 +416,15 @@ static void bench_run_case(bench_state *st, const bench_reference *ref, const be
         s = hrm_solve(bc->medium, (hrm_real)bc->sc->t0, (hrm_real)bc->sc->t1, &opt, &res);
         if (s >= 0) /* a failed solve stops mid-way: nothing to compare */
             bench_check_counts(st, bc, me, &bc->calls->n, &res.stats);
-        if (i == 0) row->stats = res.stats;
+        if (i == 0) {
+            int c;
+            row->stats = res.stats;
+            row->est_error = (double)NAN;
+            for (c = 0; c < HRM_CHANNELS && s >= 0; ++c) {
+                double e = (double)res.error[c] / fabs((double)ref->L[c]);
+                if (res.error[c] >= 0 && !(e <= row->est_error)) row->est_error = e;
+            }
+        }
         if (s < 0 ? row->status >= 0 : row->status >= 0 && s > row->status) row->status = s;
         err = s < 0 ? (double)NAN : bench_rel_error(res.L, ref->L);
         sumsq += err * err;

@@ -320,10 +320,11 @@ void bench_report_scene(const bench_state *st, int si)
 
 void bench_report_csv_row(FILE *f, const bench_state *st, const bench_row *r)
 {
-    fprintf(f, "%s,%s,%s,%s,%g,%ld,%ld,%ld,%ld,%.6e,%d,%.1f\n", bench_scenes[r->scene].name,
+    fprintf(f, "%s,%s,%s,%s,%g,%ld,%ld,%ld,%ld,%.6e,%d,%.1f,%.3e\n", bench_scenes[r->scene].name,
             st->methods[r->method].name, bench_warp_names[r->warp],
             bench_medium_names[r->medium], r->param, r->stats.evals, r->stats.medium_evals,
-            r->stats.steps, r->stats.rejected, r->rel_error, (int)r->status, r->ns_per_ray);
+            r->stats.steps, r->stats.rejected, r->rel_error, (int)r->status, r->ns_per_ray,
+            r->est_error);
 }
 
 FILE *bench_open(const char *dir, const char *name, char *path, size_t n)
@@ -444,6 +445,7 @@ typedef struct bench_prop {
     double lo, med, hi;  /* achieved / rtol over those rows */
     int warned;          /* rows that ended with a warning: the method says it missed */
     double warned_hi;    /* their largest achieved / rtol */
+    double warned_est;   /* that row's own estimate of it (result.error) / rtol */
     int errors;          /* rows with an error status */
 } bench_prop;
 
@@ -461,7 +463,7 @@ static void bench_prop_collect(const bench_state *st, int mi, int group, int sce
     double v[1024];
     int i, k, n = 0;
     memset(p, 0, sizeof *p);
-    p->lo = p->med = p->hi = p->warned_hi = (double)NAN;
+    p->lo = p->med = p->hi = p->warned_hi = p->warned_est = (double)NAN;
     for (i = 0; i < st->nsweeps; ++i) {
         const bench_sweep *sw = &st->sweeps[i];
         const bench_scene *sc = &bench_scenes[sw->scene];
@@ -477,7 +479,10 @@ static void bench_prop_collect(const bench_state *st, int mi, int group, int sce
             }
             q = r->rel_error / r->param;
             if (!bench_status_ok(r->status)) {
-                if (!p->warned || q > p->warned_hi) p->warned_hi = q;
+                if (!p->warned || q > p->warned_hi) {
+                    p->warned_hi = q;
+                    p->warned_est = r->est_error / r->param;
+                }
                 p->warned++;
                 continue;
             }
@@ -521,7 +526,8 @@ static void bench_report_proportionality(const bench_state *st, const bench_out 
                   "and at least 0.1 (no effort wasted).\n"
                   "rows: runs that returned HRM_OK, over which min/median/max are taken and "
                   ">1, >10, <0.1 counted; warned: runs that returned a warning (budget, h_min, "
-                  "storage: the method reports it missed rtol), with their largest ratio.\n\n",
+                  "storage: the method reports it missed rtol), with their largest ratio and, "
+                  "in brackets, that run's own estimate of its miss (result.error / |L|) over rtol.\n\n",
                cfg->tols[0], cfg->tols[cfg->ntols - 1], bench_control_name(cfg->control),
                BENCH_MAX_EVALS);
     bench_table_init(&t, 11);
@@ -536,7 +542,7 @@ static void bench_report_proportionality(const bench_state *st, const bench_out 
     bench_table_cell(&t, 7, ">10");
     bench_table_cell(&t, 8, "<0.1");
     bench_table_cell(&t, 9, "warned");
-    bench_table_cell(&t, 10, "worst warned");
+    bench_table_cell(&t, 10, "worst warned (its estimate)");
     for (mi = 0; mi < st->nmethods; ++mi) {
         if (st->methods[mi].kind != BENCH_ADAPTIVE || !bench_method_selected(st, mi)) continue;
         for (g = 0; g < 2; ++g) {
@@ -554,7 +560,7 @@ static void bench_report_proportionality(const bench_state *st, const bench_out 
             bench_table_cell(&t, 7, "%d", p.above10);
             bench_table_cell(&t, 8, "%d", p.below01);
             bench_table_cell(&t, 9, "%d", p.warned);
-            if (p.warned) bench_table_cell(&t, 10, "%.2g", p.warned_hi);
+            if (p.warned) bench_table_cell(&t, 10, "%.2g (%.2g)", p.warned_hi, p.warned_est);
             else bench_table_cell(&t, 10, "-");
         }
     }
