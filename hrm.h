@@ -232,7 +232,9 @@
    pending intervals are taken as they are; stats.evals never exceeds
    max_evals), HRM_WARN_STORAGE
    (recursion depth 60, or 128 Gauss-Kronrod intervals), HRM_WARN_ROUNDOFF
-   (global Gauss-Kronrod: bisection no longer reduces the error),
+   (global Gauss-Kronrod: bisection no longer reduces the error; any
+   adaptive method on a ray farther from the origin than it is long, where
+   t itself resolves only eps |t0| and a step passed on that floor alone),
    HRM_WARN_TOLERANCE (see VERIFIED below).
    Verified: the tolerance's shares are judged against a scale, half of a
    first estimate of the total (the first step or the initial panels). A
@@ -946,6 +948,8 @@ typedef struct hrm__ctx {
     hrm_real src_max[HRM__CH]; /* the largest Le or Li sampled: S / sigma_t
                                   is at most that (a weighted mean of them) */
     int scale_fixed;           /* the scale is the solution's, not a pilot's */
+    int noise_only;            /* the last step or interval judged passed on
+                                  the round-off floor alone */
     int have_ends;             /* Gauss-Kronrod: the ray's ends sampled */
     hrm__pt end[2];            /* at pa and at pb */
     struct {
@@ -2264,16 +2268,23 @@ static int hrm__stage_cost(const hrm__tableau *tb)
 #define HRM__JUMP 16 /* a step with an O(h) error may take rtol/16 of the
                         scale, and at most 16 such steps per solve */
 
-static hrm_real hrm__ratio(const hrm__ctx *c, int control, hrm_real p0, hrm_real p1,
+static hrm_real hrm__ratio(hrm__ctx *c, int control, hrm_real p0, hrm_real p1,
                            const hrm_real *y0, const hrm_real *y1, const hrm_real *err)
 {
     hrm_real worst = 0, frac = HRM_FABS((p1 - p0) / (c->pb - c->pa));
     /* Nodes are placed to within an ulp of p: no estimate resolves the
        relative error |p| eps / h this misplacement causes (it bites when a
-       warp packs a boundary layer against an end far from p = 0). */
+       warp packs a boundary layer against an end far from p = 0). Without
+       a warp the callbacks see t0 + p, placed to within an ulp of t0. */
     hrm_real pos = HRM_FABS(p0) > HRM_FABS(p1) ? HRM_FABS(p0) : HRM_FABS(p1);
-    hrm_real noise = 8 * HRM__EPS * (pos / HRM_FABS(p1 - p0) + 1);
+    hrm_real noise, noise_p = 8 * HRM__EPS * (pos / HRM_FABS(p1 - p0) + 1);
     int n;
+    /* (a ray farther from the origin than it is long: there t's own
+       resolution limits what any step can achieve) */
+    if (c->warp == HRM_WARP_NONE && HRM_FABS(c->t0) > pos && HRM_FABS(c->t0) > c->pb - c->pa)
+        pos = HRM_FABS(c->t0);
+    noise = 8 * HRM__EPS * (pos / HRM_FABS(p1 - p0) + 1);
+    if (control != HRM__JUMP) c->noise_only = 0;
     for (n = 0; n < HRM__NY; ++n) {
         hrm_real atol = n >= HRM__CH ? c->atol : 0, tol, e = HRM_FABS(err[n]);
         hrm_real inc = HRM_FABS(y1[n] - y0[n]), Y = HRM_FABS(y1[n]);
@@ -2291,7 +2302,13 @@ static hrm_real hrm__ratio(const hrm__ctx *c, int control, hrm_real p0, hrm_real
             else
                 tol = atol * frac + c->rtol * (inc > frac * Y ? inc : frac * Y);
         }
-        if (tol < noise * inc) tol = noise * inc;
+        if (tol < noise * inc) {
+            /* only the resolution of t far from the origin lets this step
+               through: say so if it is taken */
+            if (control != HRM__JUMP && e > tol && e > noise_p * inc && e <= noise * inc)
+                c->noise_only = 1;
+            tol = noise * inc;
+        }
         if (e > 0) {
             hrm_real r = tol > 0 ? e / tol : HRM__R(1e30);
             if (r > worst) worst = r;
@@ -2338,9 +2355,12 @@ static hrm_real hrm__clamp(hrm_real x, hrm_real lo, hrm_real hi)
 }
 
 /* An accepted step or interval adds its estimate of L's error. */
+static void hrm__warn(hrm__ctx *c, hrm_status w);
+
 static void hrm__accepted(hrm__ctx *c, const hrm_real *err)
 {
     int i;
+    if (c->noise_only) hrm__warn(c, HRM_WARN_ROUNDOFF);
     for (i = 0; i < HRM__CH; ++i) c->err_acc[i] += HRM_FABS(err[HRM__CH + i]);
 }
 
