@@ -1601,10 +1601,28 @@ static void hrm__tau_reach(hrm__ctx *c, hrm_real reach, hrm_real *x, hrm_real *t
    infinite t1 maps to a finite end, pulled in by one rounding step so that
    no callback ever sees infinity (the part of u dropped has measure of
    order epsilon). */
+/* The warp's parameters alone (no callback is called): HRM_ERR_BAD_WARP
+   for an unknown kind, sigma_ref or D negative or not finite, delta not
+   finite, a user warp without its callbacks. */
+static hrm_status hrm__warp_valid(const hrm_warp *w)
+{
+    switch (w->kind) {
+    case HRM_WARP_NONE: return HRM_OK;
+    case HRM_WARP_DISTANCE:
+        return HRM__FINITE(w->sigma_ref) && w->sigma_ref >= 0 ? HRM_OK : HRM_ERR_BAD_WARP;
+    case HRM_WARP_EQUIANGULAR:
+        return HRM__FINITE(w->D) && w->D >= 0 && HRM__FINITE(w->delta) ? HRM_OK : HRM_ERR_BAD_WARP;
+    case HRM_WARP_USER:
+        return w->t_of_u && w->dt_du && w->u_of_t ? HRM_OK : HRM_ERR_BAD_WARP;
+    default: return HRM_ERR_BAD_WARP;
+    }
+}
+
 static hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_warp *w)
 {
     int inf = !HRM__FINITE(c->T);
     hrm_real T = c->T;
+    if (hrm__warp_valid(w) != HRM_OK) return HRM_ERR_BAD_WARP;
     c->warp = w->kind;
     c->pa = 0;
     c->pb = T;
@@ -1622,7 +1640,6 @@ static hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_warp *w)
            that reach. */
         hrm_real s = w->sigma_ref, reach = HRM_LOG(2 / HRM__EPS), x, tx, lowest;
         hrm_real tiny = HRM__IS_FLOAT ? HRM__R(FLT_MIN) : HRM__R(DBL_MIN);
-        if (!(HRM__FINITE(s) && s >= 0)) return HRM_ERR_BAD_WARP;
         if (s == 0 || inf || s * T > reach / 2) {
             hrm_real cap;
             hrm__tau_reach(c, reach, &x, &tx, &lowest);
@@ -1643,7 +1660,6 @@ static hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_warp *w)
     }
     case HRM_WARP_EQUIANGULAR: {
         hrm_real D = w->D, da = c->t0 - w->delta, db = c->t1 - w->delta, rb;
-        if (!(HRM__FINITE(D) && D >= 0 && HRM__FINITE(w->delta))) return HRM_ERR_BAD_WARP;
         /* A light closer to the ray than the resolution of t near it is on
            the ray as far as any abscissa can tell. */
         hrm_real res = 4 * HRM__EPS * (HRM_FABS(w->delta) > HRM_FABS(c->t0) ? HRM_FABS(w->delta)
@@ -1679,7 +1695,6 @@ static hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_warp *w)
         break;
     }
     case HRM_WARP_USER:
-        if (!w->t_of_u || !w->dt_du || !w->u_of_t) return HRM_ERR_BAD_WARP;
         c->uw = w;
         c->pa = w->u_of_t(w->user, c->t0);
         c->pb = w->u_of_t(w->user, c->t1);
@@ -3049,15 +3064,9 @@ static hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, const hrm_medium *m, 
     if (tr_only && HRM__FINITE(c->T)) {
         /* tau alone is integrated in t: a warp only says where an
            infinite ray ends. Its parameters are still checked. */
-        const hrm_warp *w = &o->warp;
         hrm_warp none;
         memset(&none, 0, sizeof none);
-        if ((int)w->kind < 0 || (int)w->kind > (int)HRM_WARP_USER ||
-            (w->kind == HRM_WARP_DISTANCE && !(HRM__FINITE(w->sigma_ref) && w->sigma_ref >= 0)) ||
-            (w->kind == HRM_WARP_EQUIANGULAR &&
-             !(HRM__FINITE(w->D) && w->D >= 0 && HRM__FINITE(w->delta))) ||
-            (w->kind == HRM_WARP_USER && (!w->t_of_u || !w->dt_du || !w->u_of_t)))
-            return HRM_ERR_BAD_WARP;
+        if (hrm__warp_valid(&o->warp) != HRM_OK) return HRM_ERR_BAD_WARP;
         st = hrm__setup_warp(c, &none);
     } else {
         st = hrm__setup_warp(c, &o->warp);

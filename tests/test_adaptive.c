@@ -687,6 +687,30 @@ static double ad_point_ref(const problem *p, int c, double D, double delta)
       order than what is returned).
    3. Any budget: 0 <= L <= max(Li) (1 - Tr) (S / sigma_t is a weighted mean
       of Le and Li), whatever the status. */
+/* A thin medium (sigma_a = 0.01, sigma_s = 0.04) lit by a point light 1e-3
+   from the ray at delta, given as constants or (callbacks != 0) as the same
+   constants through sigma_a/sigma_s callbacks (the sine profile with no
+   amplitude: sigma_t = 0.05, sigma_a = 0.2 sigma_t). */
+static problem ad_thin_light(scene *sc, double delta, int callbacks)
+{
+    problem p;
+    int c;
+    scene_init(sc);
+    for (c = 0; c < NCH; ++c) {
+        sc->sig_a[c] = 0.01;
+        sc->sig_s[c] = 0.04;
+        sc->I[c] = 1;
+        sc->a[c] = 0.05;
+        sc->b[c] = 0;
+        sc->pa[c] = 0.2;
+    }
+    sc->profile = PROFILE_SINE;
+    sc->D = 1e-3;
+    sc->delta = delta;
+    p = make_problem(sc, callbacks ? P_HET : P_HOM, 0, LIGHT_POINT);
+    return p;
+}
+
 static void ad_verified(void)
 {
     static const struct { hrm_method m; hrm_gk_mode gk; double delta, rtol; } cases[] = {
@@ -694,101 +718,102 @@ static void ad_verified(void)
         { HRM_DORMAND_PRINCE, HRM_GK_DEFAULT, 1.00475, 1e-3 },
         { HRM_FEHLBERG, HRM_GK_DEFAULT, 1.15933, 1e-3 },
     };
+    static const char *const how[2] = {"constants", "sigma callbacks"};
     scene sc;
     problem p;
-    int i, c, mi;
-    scene_init(&sc);
-    for (c = 0; c < NCH; ++c) {
-        sc.sig_a[c] = 0.01;
-        sc.sig_s[c] = 0.04;
-        sc.I[c] = 1;
-    }
-    sc.D = 1e-3;
-    p = make_problem(&sc, P_HOM, 0, LIGHT_POINT);
-    for (i = 0; i < (int)(sizeof cases / sizeof cases[0]) && !real_is_float(); ++i) {
-        hrm_options o = hrm_default_options(cases[i].m);
-        hrm_medium m;
-        hrm_result r;
-        hrm_status st;
-        sc.delta = cases[i].delta;
-        m = problem_medium(&p);
-        o.rtol = (hrm_real)cases[i].rtol;
-        if (cases[i].gk) o.gk_mode = cases[i].gk;
-        st = hrm_solve(&m, 0, 10, &o, &r);
-        CHECK(st == HRM_OK || st == HRM_WARN_TOLERANCE, "%s, light at %g: status %d",
-              hrm_method_name(cases[i].m), cases[i].delta, st);
-        for (c = 0; c < NCH; ++c) {
-            double ref = ad_point_ref(&p, c, sc.D, sc.delta), e = fabs((double)r.L[c] - ref);
-            if (st == HRM_OK)
-                CHECK_NEAR(e / ref, 0, 10 * cases[i].rtol, "%s, light 1e-3 from the ray at %g, rtol %g: L",
-                           hrm_method_name(cases[i].m), cases[i].delta, cases[i].rtol);
-            CHECK(e <= (double)r.error[c] * 1.01 + 1e-12 * ref, "%s: the error estimate %.3g bounds the error %.3g",
-                  hrm_method_name(cases[i].m), (double)r.error[c], e);
+    int i, c, mi, cb;
+    for (cb = 0; cb < 2; ++cb)
+        for (i = 0; i < (int)(sizeof cases / sizeof cases[0]) && !real_is_float(); ++i) {
+            hrm_options o = hrm_default_options(cases[i].m);
+            hrm_medium m;
+            hrm_result r;
+            hrm_status st;
+            p = ad_thin_light(&sc, cases[i].delta, cb);
+            m = problem_medium(&p);
+            o.rtol = (hrm_real)cases[i].rtol;
+            if (cases[i].gk) o.gk_mode = cases[i].gk;
+            st = hrm_solve(&m, 0, 10, &o, &r);
+            CHECK(st == HRM_OK || st == HRM_WARN_TOLERANCE, "%s, %s, light at %g: status %d",
+                  hrm_method_name(cases[i].m), how[cb], cases[i].delta, st);
+            for (c = 0; c < NCH; ++c) {
+                double ref = ad_point_ref(&p, c, sc.D, sc.delta), e = fabs((double)r.L[c] - ref);
+                if (st == HRM_OK)
+                    CHECK_NEAR(e / ref, 0, 10 * cases[i].rtol, "%s, %s, light 1e-3 from the ray at %g, rtol %g: L",
+                               hrm_method_name(cases[i].m), how[cb], cases[i].delta, cases[i].rtol);
+                CHECK(e <= (double)r.error[c] * 1.01 + 1e-12 * ref,
+                      "%s, %s: the error estimate %.3g bounds the error %.3g", hrm_method_name(cases[i].m),
+                      how[cb], (double)r.error[c], e);
+            }
         }
-    }
     /* 4. Far from the origin (t0 = 1e8, double: t resolves 1.5e-8), a light
        1e-3 from the ray cannot be integrated to rtol 1e-8: the integrand
        the callbacks see jitters at 1e-5 of itself. The pairs spent their
        100 000 evaluations there and ended 56-95% wrong; they now stop at
        the resolution of t with HRM_WARN_ROUNDOFF, within 1e-4 (measured
        1e-6..1e-5) and a few hundred evaluations. */
-    scene_init(&sc);
-    for (c = 0; c < NCH; ++c) {
-        sc.sig_a[c] = 0.01;
-        sc.sig_s[c] = 0.04;
-        sc.I[c] = 1;
-    }
-    sc.D = 1e-3;
-    sc.delta = 1e8 + 3.7;
-    p = make_problem(&sc, P_HOM, 0, LIGHT_POINT);
-    for (mi = 0; mi < N_METHODS_ALL && !real_is_float(); ++mi) {
-        hrm_method meth = every_method[mi];
-        hrm_options o = hrm_default_options(meth);
-        hrm_medium m = problem_medium(&p);
-        hrm_result r;
-        hrm_status st;
-        if (!is_pair(meth)) continue;
-        o.rtol = (hrm_real)1e-8;
-        st = hrm_solve(&m, (hrm_real)1e8, (hrm_real)(1e8 + 10), &o, &r);
-        CHECK_INT(st, HRM_WARN_ROUNDOFF, "%s, t0 = 1e8, rtol 1e-8: status", hrm_method_name(meth));
-        CHECK(r.stats.evals < 10000, "%s, t0 = 1e8: %ld evaluations", hrm_method_name(meth), r.stats.evals);
-        for (c = 0; c < NCH; ++c) {
-            double ref = gl_exact_f(&p, c, 1e8, 1e8, 1e8 + 3.6, 400) +
-                         gl_exact_f(&p, c, 1e8, 1e8 + 3.6, 1e8 + 3.7, 2000) +
-                         gl_exact_f(&p, c, 1e8, 1e8 + 3.7, 1e8 + 3.8, 2000) +
-                         gl_exact_f(&p, c, 1e8, 1e8 + 3.8, 1e8 + 10, 700);
-            CHECK_REL((double)r.L[c], ref, 1e-4, "%s, t0 = 1e8: L within 1e-4", hrm_method_name(meth));
-        }
-    }
-    /* 2 and 3 on the homogeneous scene with Li = 1 (S / sigma_t = albedo) */
-    scene_init(&sc);
-    p = make_problem(&sc, P_HOM, 0, LIGHT_CONST);
-    for (mi = 0; mi < N_METHODS_ALL; ++mi) {
-        hrm_method meth = every_method[mi];
-        long budget;
-        for (budget = 4; budget <= (is_adaptive(meth) ? 40 : 4); ++budget) {
+    for (cb = 0; cb < 2; ++cb)
+        for (mi = 0; mi < N_METHODS_ALL && !real_is_float(); ++mi) {
+            hrm_method meth = every_method[mi];
             hrm_options o = hrm_default_options(meth);
-            hrm_medium m = problem_medium(&p);
+            hrm_medium m;
             hrm_result r;
             hrm_status st;
-            o.rtol = (hrm_real)1e-6;
-            o.max_evals = budget;
-            st = hrm_solve(&m, 0, 10 * (1 + (double)budget), &o, &r);
-            if (st < 0) {
-                CHECK_INT(st, HRM_ERR_BAD_OPTION, "%s budget %ld: below one step", hrm_method_name(meth), budget);
-                continue;
-            }
+            if (!is_pair(meth)) continue;
+            p = ad_thin_light(&sc, 1e8 + 3.7, cb);
+            m = problem_medium(&p);
+            o.rtol = (hrm_real)1e-8;
+            st = hrm_solve(&m, (hrm_real)1e8, (hrm_real)(1e8 + 10), &o, &r);
+            CHECK_INT(st, HRM_WARN_ROUNDOFF, "%s, %s, t0 = 1e8, rtol 1e-8: status", hrm_method_name(meth), how[cb]);
+            CHECK(r.stats.evals < 10000, "%s, %s, t0 = 1e8: %ld evaluations", hrm_method_name(meth), how[cb],
+                  r.stats.evals);
             for (c = 0; c < NCH; ++c) {
-                double top = sc.E[c] * (1 - (double)r.Tr[c]);
-                if (!is_adaptive(meth)) {
-                    CHECK((double)r.error[c] == -1, "%s: no error estimate: -1", hrm_method_name(meth));
+                double ref = gl_exact_f(&p, c, 1e8, 1e8, 1e8 + 3.6, 400) +
+                             gl_exact_f(&p, c, 1e8, 1e8 + 3.6, 1e8 + 3.7, 2000) +
+                             gl_exact_f(&p, c, 1e8, 1e8 + 3.7, 1e8 + 3.8, 2000) +
+                             gl_exact_f(&p, c, 1e8, 1e8 + 3.8, 1e8 + 10, 700);
+                CHECK_REL((double)r.L[c], ref, 1e-4, "%s, %s, t0 = 1e8: L within 1e-4", hrm_method_name(meth),
+                          how[cb]);
+            }
+        }
+    /* 2 and 3 with Li = 1 (S / sigma_t = albedo), the medium as constants
+       and as the same constants through sigma callbacks (then tau comes
+       from the transmittance layer) */
+    for (cb = 0; cb < 2; ++cb) {
+        scene_init(&sc);
+        for (c = 0; c < NCH; ++c) {
+            sc.a[c] = sig_t_hom(&sc, c);
+            sc.b[c] = 0;
+            sc.pa[c] = sc.sig_a[c] / sc.a[c];
+        }
+        sc.profile = PROFILE_SINE;
+        p = make_problem(&sc, cb ? P_HET : P_HOM, 0, LIGHT_CONST);
+        for (mi = 0; mi < N_METHODS_ALL; ++mi) {
+            hrm_method meth = every_method[mi];
+            long budget;
+            for (budget = 4; budget <= (is_adaptive(meth) ? 40 : 4); ++budget) {
+                hrm_options o = hrm_default_options(meth);
+                hrm_medium m = problem_medium(&p);
+                hrm_result r;
+                hrm_status st;
+                o.rtol = (hrm_real)1e-6;
+                o.max_evals = budget;
+                st = hrm_solve(&m, 0, 10 * (1 + (double)budget), &o, &r);
+                if (st < 0) {
+                    CHECK_INT(st, HRM_ERR_BAD_OPTION, "%s budget %ld: below one step", hrm_method_name(meth), budget);
                     continue;
                 }
-                CHECK(finite_d((double)r.error[c]) && r.error[c] >= 0, "%s budget %ld: error estimate finite, >= 0",
-                      hrm_method_name(meth), budget);
-                CHECK(r.L[c] >= 0 && (double)r.L[c] <= top * (1 + 64 * real_eps()),
-                      "%s budget %ld, status %d: 0 <= L %.6g <= max(Li)(1 - Tr) %.6g",
-                      hrm_method_name(meth), budget, st, (double)r.L[c], top);
+                for (c = 0; c < NCH; ++c) {
+                    double top = sc.E[c] * (1 - (double)r.Tr[c]);
+                    if (!is_adaptive(meth)) {
+                        CHECK((double)r.error[c] == -1, "%s: no error estimate: -1", hrm_method_name(meth));
+                        continue;
+                    }
+                    CHECK(finite_d((double)r.error[c]) && r.error[c] >= 0,
+                          "%s, %s, budget %ld: error estimate finite, >= 0", hrm_method_name(meth), how[cb], budget);
+                    CHECK(r.L[c] >= 0 && (double)r.L[c] <= top * (1 + 64 * real_eps()),
+                          "%s, %s, budget %ld, status %d: 0 <= L %.6g <= max(Li)(1 - Tr) %.6g",
+                          hrm_method_name(meth), how[cb], budget, st, (double)r.L[c], top);
+                }
             }
         }
     }
