@@ -405,7 +405,7 @@ static void ad_limits(void)
     for (i = 0; i < AD_NCFG; ++i) {
         const ad_cfg *cfg = &ad_cfgs[i];
         long budget, minimum = is_pair(cfg->method) ? cfg->cost + 1L
-                             : cfg->method == HRM_GAUSS_KRONROD ? 17L : 2L * 4 + 1;
+                             : cfg->method == HRM_GAUSS_KRONROD ? 17L : 4L * 2 + 1;
         long over = 0, badst = 0, unfinite = 0, miscount = 0, tried = 0, full_evals;
         double t0, t1, worst = 0, rtol = real_is_float() ? 3e-5 : 1e-6;
         hrm_options o = ad_options(cfg, rtol);
@@ -464,7 +464,7 @@ static void ad_limits(void)
         const ad_cfg *cfg = &ad_cfgs[i];
         int steps = is_pair(cfg->method) ? 0 : 3;
         long cost = is_pair(cfg->method) ? cfg->cost + 1L
-                  : cfg->method == HRM_GAUSS_KRONROD ? 15L * steps + 2 : 2L * steps + 1;
+                  : cfg->method == HRM_GAUSS_KRONROD ? 15L * steps + 2 : 4L * steps + 1;
         hrm_options o = ad_options(cfg, 1e-4);
         hrm_medium m = problem_medium(&hom);
         hrm_result r;
