@@ -149,16 +149,19 @@
                                                    fit, then left to right;
                                                    4*steps+1 to start (2
                                                    panels by default, <= 32)
-   HRM_GAUSS_KRONROD    22     15 per interval     G7/K15, and the ray's two
-                               + 2                 ends once (a layer at the
+   HRM_GAUSS_KRONROD    12     7 per interval      gk_rule K7 (G3/K7, the
+                        (K7)   + 2                 default of GLOBAL) or K15
+                        22     15 per interval     (G7/K15, the default of
+                        (K15)  + 2                 LOCAL); the ray's two ends
+                                                   once (a layer at the
                                                    camera or surface is seen);
-                                                   gk_mode GLOBAL
-                                                   (QUADPACK QAG: worst
-                                                   interval first, <= 128
-                                                   intervals; <= 32 to start)
-                                                   or LOCAL (Munoz:
-                                                   recursive split, samples of
-                                                   a split interval discarded)
+                                                   gk_mode GLOBAL (worst
+                                                   interval first while 128
+                                                   fit, then left to right;
+                                                   <= 32 to start) or LOCAL
+                                                   (Munoz: recursive split,
+                                                   samples of a split
+                                                   interval discarded)
    HRM_BOGACKI_SHAMPINE 3(2)   3 per step          first same as last
    HRM_DORMAND_PRINCE   5(4)   5 per step          first same as last
    HRM_FEHLBERG         4(5)   5 per step          4th order propagated
@@ -192,37 +195,54 @@
    TOLERANCES (adaptive methods)
    ==========================================================================
    rtol (default 1e-4) and atol (default 0) bound the GLOBAL error of L, per
-   channel:  |L - L_exact| <~ rtol*|L| + atol.  Error control is local, so
-   this is how the local tests are built to add up:
-   - each step or interval gets the share  atol*f + rtol*max(|dL|, f*|L|)
-     of the tolerance, f being its fraction of the integration range and dL
-     its own increment; summed over the steps that is <= atol + 2*rtol*|L|.
-     |L| is the larger of the running sum and half of a coarse estimate of
-     the total taken from the first samples (no extra evaluation), so an
-     integral that starts at zero is not asked for a relative accuracy on
-     nothing;
-   - in the optical-depth form the local errors add without amplification,
-     which is what makes a sum of local shares a global bound;
-   - tau is controlled the same way, its error weighted by the transmittance
-     where it occurs (an error in tau matters through exp(-tau) only): the
-     bound is |Tr - Tr_exact| <~ 2*rtol*tau(t0,t1), absolute, and no effort
-     goes into tau where Tr is already 0. A closed-form Tr is exact;
-   - a step or interval whose error does not shrink with it (a jump such as
+   channel:  |L - L_exact| <~ rtol*|L| + atol.
+   - Nested Simpson and global Gauss-Kronrod refine worst first: the
+     interval with the largest error estimate is split until the estimates
+     add up to at most max(atol, rtol*|L|), |L| the current total, so the
+     tolerance follows the best estimate of the answer and an interval
+     accepted early is refined again when the total proves smaller. Past
+     their storage (64 and 128 intervals) each interval is finished left to
+     right against its share, as below, at the scale of the total found.
+   - The Runge-Kutta pairs (and Munoz's local Gauss-Kronrod) judge each
+     step or interval as it comes: it gets the share
+     atol*f + rtol*max(|dL|, f*|L|) of the tolerance, f being its fraction
+     of the integration range and dL its own increment; summed over the
+     steps that is <= atol + 2*rtol*|L|. |L| is the larger of the running
+     sum and half of a coarse estimate of the total taken from the first
+     samples (no extra evaluation), so an integral that starts at zero is
+     not asked for a relative accuracy on nothing. In the optical-depth
+     form the local errors add without amplification, which is what makes a
+     sum of local shares a global bound.
+   - tau (coupled mode) is controlled the same way, its error weighted by
+     the transmittance where it occurs (an error in tau matters through
+     exp(-tau) only), and no effort goes into tau where Tr is already 0. A
+     closed-form Tr is exact; decoupled tau has its own tau_tol.
+   - A step or interval whose error does not shrink with it (a jump such as
      a shadow edge, or noise) may take rtol/16 of |L|, at most 16 times per
-     call, instead of descending to h_min.
-   The estimates are those of the lower-order rule (Simpson on the halves,
-   G7 vs K15, the embedded solution), while the higher-order result is
-   returned (the Richardson-corrected halves, K15, the propagated
-   solution), so the achieved error is usually below rtol, far below for
-   Gauss-Kronrod at tight tolerances (bench/ measures
-   achieved error against rtol for every method and scene). The
-   Runge-Kutta pairs under the default controller also read the stage
-   values as samples of L' at the step's distinct nodes: the top term of
-   their Newton interpolation series, integrated over the step, is a
-   second estimate, and the larger of the two counts (a step over a
-   light's peak can fool both embedded solutions alike; the stage values
-   show it). At a jump, where no series converges, the pair's own estimate
-   judges the rough step. Munoz's and
+     call, instead of descending to h_min (left-to-right drivers; worst
+     first, a jump's interval is split while it holds the largest error).
+   The estimates are of the result returned, not of a lower-order rule:
+   - nested Simpson returns the Richardson-corrected halves; its estimate is
+     |S2 - S1| until a split shows S2 - S1 falling like h^5, then at most a
+     fifth of it, scaled by how far the parent's corrected value missed its
+     halves' sum;
+   - Gauss-Kronrod returns K; its estimate is |K - G| until a split shows it
+     falling, then scaled by how far the parent's K missed its halves' sum
+     (|K - G| alone is G's error, far above K's);
+   - Bogacki-Shampine, Dormand-Prince and Verner return their higher order:
+     the embedded estimate e becomes 4 e (e/M)^(1/(k+1)), M the step's size;
+     Fehlberg and Cash-Karp return the order their estimate is of.
+   Measured on bench/'s smooth scenes, rtol 1e-2..1e-10, both ways of
+   giving the medium, with and without a warp: the worst run returned with
+   HRM_OK is at most 2.3 rtol for every default, the median 0.002-0.12 rtol
+   (bench/results/summary.md, "Tolerance proportionality"). The Runge-Kutta
+   pairs under the default controller also read the stage values as
+   samples of L' at the step's distinct nodes: the top term of their Newton
+   interpolation series, integrated over the step, is a second estimate,
+   and the larger of the two counts (a step over a light's peak can fool
+   both embedded solutions alike; the stage values show it). At a jump,
+   where no series converges, the pair's own estimate judges the rough
+   step. Munoz's and
    Gonterman's controllers (options.control) keep their papers' own
    definitions: eq. 12 relative to |L| per step (whose step rule shrinks the
    step whenever rtol < 0.01: give h_min), and eq. 3.4 error per unit step.
@@ -235,7 +255,7 @@
    max_evals; nested Simpson and global Gauss-Kronrod spend them on the
    intervals with the largest estimates, so what they return is the best
    their samples give), HRM_WARN_STORAGE
-   (recursion depth 60, or 128 Gauss-Kronrod intervals), HRM_WARN_ROUNDOFF
+   (a left-to-right finish 60 bisections deep), HRM_WARN_ROUNDOFF
    (nested Simpson and global Gauss-Kronrod: bisection no longer reduces
    the error; any
    adaptive method on a ray farther from the origin than it is long, where
@@ -264,9 +284,11 @@
    What can still be missed: a feature (a light's peak, a thin layer)
    narrower than the spacing of the first samples with nothing around it
    never shows in any sample. Give a point light the equiangular warp.
-   Stack use: at most about 30 KB (nested Simpson's recursion) plus 12 KB
-   (the transmittance layer's panel table) and 1.3 KB (the last abscissae);
-   no heap.
+   Stack use: at most about 60 KB with 3 channels, 130 KB with 8 (nested
+   Simpson's intervals, samples and left-to-right finish; HRM_NS_INTERVALS,
+   HRM_GK_INTERVALS and HRM_MAX_DEPTH set it), plus 13 KB (30 KB with 8
+   channels: the transmittance layer's panel table) and 3 KB (the last
+   abscissae); no heap.
 
    ==========================================================================
    IMPORTANCE SAMPLING (options.warp; Munoz 2014 s.5)
@@ -467,6 +489,13 @@ typedef enum hrm_gk_mode {
     HRM_GK_LOCAL             /* Munoz 2014: recursive local split */
 } hrm_gk_mode;
 
+/* Gauss-Kronrod pair. */
+typedef enum hrm_gk_rule {
+    HRM_GK_RULE_DEFAULT = 0, /* K7 in HRM_GK_GLOBAL, K15 in HRM_GK_LOCAL */
+    HRM_GK_K15,              /* G7/K15: 15 samples per interval, degree 22 */
+    HRM_GK_K7                /* G3/K7: 7 samples per interval, degree 11 */
+} hrm_gk_rule;
+
 /* How tau (hence Tr) is integrated where the medium has no closed form.
    Both integrate sigma_t in t over the actual distances between abscissae,
    so a constant sigma_t given through callbacks is exact under any warp. */
@@ -556,6 +585,7 @@ typedef struct hrm_options {
     long max_evals;     /* source evaluation budget. 0: 100000 */
     hrm_control control;/* Runge-Kutta step control. 0: HRM_CONTROL_PI */
     hrm_gk_mode gk_mode;/* Gauss-Kronrod. 0: HRM_GK_GLOBAL */
+    hrm_gk_rule gk_rule;/* Gauss-Kronrod. 0: K7 global, K15 local */
     hrm_warp warp;      /* importance sampling. 0: none */
     hrm_tau_mode tau_mode; /* 0: HRM_TAU_DECOUPLED */
     hrm_real tau_tol;   /* decoupled tau: the error of each optical-depth
@@ -875,6 +905,56 @@ static const hrm_real hrm__gk_tau[15 * 15] = {
     2.29115970609490190e-02, 6.31622655156741375e-02, 1.04674243689753713e-01, 1.40817773186961454e-01, 1.68785146780342205e-01, 1.90631315153053343e-01, 2.04083950446876189e-01, 2.09912182760747273e-01, 2.03900259354568153e-01, 1.91016579304918804e-01, 1.68159244468844088e-01, 1.41771675662672736e-01, 1.03162128389265362e-01, 6.59297925928097189e-02, 1.25372167533764223e-02,
 };
 
+/* Gauss-Kronrod G3/K7 on [-1, 1]: the Kronrod extension of the 3-point
+   Gauss rule, exact to degree 11 (nodes and weights from the moment
+   equations in 50-digit arithmetic; the values tabulated by Kronrod 1965). */
+static const hrm_real hrm__k7_x[7] = {
+    -0.960491268708020283423507092629079963, -0.774596669241483377035853079956479922, -0.434243749346802558002071502844627817,
+    0, 0.434243749346802558002071502844627817, 0.774596669241483377035853079956479922,
+    0.960491268708020283423507092629079963};
+static const hrm_real hrm__k7_wk[7] = {
+    0.104656226026467265193823857192073038, 0.268488089868333440728569280666709625, 0.401397414775962222905051818618431879,
+    0.450916538658474142345110087045570917, 0.401397414775962222905051818618431879, 0.268488089868333440728569280666709625,
+    0.104656226026467265193823857192073038};
+static const hrm_real hrm__k7_wg[7] = {
+    0, 0.555555555555555555555555555555555556, 0,
+    0.888888888888888888888888888888888889, 0, 0.555555555555555555555555555555555556,
+    0};
+/* tau at the K7 nodes: row k integrates the degree-6 interpolant of the 7
+   samples from -1 to node k (50-digit quadrature of the Lagrange basis). */
+static const hrm_real hrm__k7_tau[7 * 7] = {
+    0.0481496455686497328621236293498, -0.0130360908056543319319257724666, 0.00700577096934105189603216828381,
+    -0.00428231888789362889754385797461, 0.00272596459404615386195021000773, -0.00157297682571128731846100459503,
+    0.000518736679202026104317534765771,
+    0.117808240183343764755767317213, 0.124361311477770450717200491237, -0.0250548635778850230812518851319,
+    0.0132563814267296594664430245876, -0.00801061715598765799513410782215, 0.00452069012015710009776088527137,
+    -0.00147781171561167099663880531059,
+    0.0967620363480509583880666623129, 0.299671729373368531074003356892, 0.193453235451728566206801772282,
+    -0.035600487606178007749199607425, 0.0178891733849423784096871482136, -0.00941953396680635289235104894583,
+    0.00300009766809136856092021382586,
+    0.109708656676477259896398377912, 0.251617102477383148859089283566, 0.440125779262853033412855573478,
+    0.225458269329237071172555043523, -0.0387283644868908105078037548599, 0.0168709873909502918694799971002,
+    -0.00505243065000999470257452071963,
+    0.101656128358375896632903643366, 0.277907623835139793620920329613, 0.383508241391019844495364670405,
+    0.486517026264652150094309694471, 0.207944179324233656698250046336, -0.0311836395050350903454340762249,
+    0.00789418967841630680575719487919,
+    0.106134037742078936190462662503, 0.263967399748176340630808395395, 0.409408031931949880900185926441,
+    0.437660157231744482878667062458, 0.42645227835384724598630370375, 0.14412677839056299001136878943,
+    -0.0131520141568764995619434600205,
+    0.104137489347265239089506322426, 0.270061066694044728047030285262, 0.398671450181916069043101608611,
+    0.45519885754636777124265394502, 0.394391643806621171009019650335, 0.281524180673987772660495053133,
+    0.0565065804578175323317002278422,
+};
+
+/* A Gauss-Kronrod pair: n nodes ascending, Kronrod and Gauss weights,
+   the tau matrix, the Kronrod rule's exact degree. */
+typedef struct hrm__gk_pair {
+    int n, degree;
+    const hrm_real *x, *wk, *wg, *tau;
+} hrm__gk_pair;
+static const hrm__gk_pair hrm__k15 = {15, 22, hrm__gk_x, hrm__gk_wk, hrm__gk_wg, hrm__gk_tau};
+static const hrm__gk_pair hrm__k7 = {7, 11, hrm__k7_x, hrm__k7_wk, hrm__k7_wg, hrm__k7_tau};
+
 /* The Chebyshev polynomials at the degree-16 Lobatto points, ascending in t:
    T_k(-cos(j pi / 16)) = (-1)^k cos(j k pi / 16), row k, column j (the
    degree-8 points are the even columns). */
@@ -958,8 +1038,7 @@ typedef struct hrm__ctx {
     int scale_fixed;           /* the scale is the solution's, not a pilot's */
     int noise_only;            /* the last step or interval judged passed on
                                   the round-off floor alone */
-    int have_ends;             /* Gauss-Kronrod: the ray's ends sampled */
-    hrm__pt end[2];            /* at pa and at pb */
+    const struct hrm__gk_pair *gk; /* Gauss-Kronrod: the pair */
     struct {
         hrm_real s, q[HRM__CH], st[HRM__CH], tr[HRM__CH];
     } memo[HRM__MEMO + 1];
@@ -2660,124 +2739,187 @@ static void hrm__ns_local(hrm__ctx *c, const hrm__pt *a, const hrm__pt *m, const
     }
 }
 
-/* K15 over [a, b] of y = (tau, L) given tau at a (tau_a; ignored when Tr
-   at the nodes is known). K receives the increments; ek the plain |K - G|
-   (Munoz), eq QUADPACK's estimate (scaled by the integrand's variation, at
-   least 50 epsilons of the integral of |f|). */
-static void hrm__gk15(hrm__ctx *c, hrm_real a, hrm_real b, const hrm_real *tau_a,
-                      hrm_real *K, hrm_real *ek, hrm_real *eq)
+/* The source S at a sample (per unit length: its g divided by ds/dp). */
+static void hrm__source_of(const hrm__pt *pt, int ch, hrm_real *S)
 {
+    *S = pt->J > 0 ? pt->gq[ch] / pt->J : 0;
+}
+
+/* The Kronrod rule (c->gk) over [a, b] of y = (tau, L) given tau at a
+   (tau_a; ignored when Tr at the nodes is known). K receives the
+   increments; ek |K - G| (Munoz's estimate, G's error), at least 50
+   epsilons of the integral of |f| (QUADPACK's floor of round-off). The
+   callers turn it into an estimate of K's (hrm__wf_split). */
+static void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, const hrm_real *tau_a,
+                    hrm_real *K, hrm_real *ek, const hrm_real *Sa, const hrm_real *Sb,
+                    hrm_real *Sm)
+{
+    const hrm__gk_pair *R = c->gk;
     hrm__pt pt[15];
     hrm_real hl = (b - a) / 2, mid = (a + b) / 2, off_a = 0, off_b = 0, J;
-    int j, l, n;
+    int j, l, n, N = R->n;
 
-    for (j = 0; j < 15; ++j) hrm__eval(c, j == 7 ? mid : mid + hl * hrm__gk_x[j], &pt[j]);
+    for (j = 0; j < N; ++j) hrm__eval(c, 2 * j + 1 == N ? mid : mid + hl * R->x[j], &pt[j]);
     if (c->coupled) {
         hrm__map(c, a, &off_a, &J);
         hrm__map(c, b, &off_b, &J);
     }
     for (n = 0; n < HRM__NY; ++n) {
         int ch = n % HRM__CH, is_tau = n < HRM__CH;
-        hrm_real f[15], rk = 0, rg = 0, rabs = 0, rasc = 0, mean, eend;
+        hrm_real f[15], rk = 0, rg = 0, rabs = 0, eend;
         if (is_tau && !c->coupled) {
-            K[n] = ek[n] = eq[n] = 0;
+            K[n] = ek[n] = 0;
             continue;
         }
-        for (j = 0; j < 15; ++j) {
+        for (j = 0; j < N; ++j) {
             if (is_tau) {
                 f[j] = pt[j].gs[ch];
             } else if (c->coupled) {
-                /* tau at the node: the degree-14 interpolant of sigma_t - sbar
+                /* tau at the node: the interpolant of sigma_t - sbar at all nodes
                    integrated from a, and sbar over the distance */
                 hrm_real t = 0;
-                for (l = 0; l < 15; ++l) t += hrm__gk_tau[j * 15 + l] * pt[l].gs[ch];
+                for (l = 0; l < N; ++l) t += R->tau[j * N + l] * pt[l].gs[ch];
                 t = tau_a[ch] + c->sbar[ch] * (pt[j].off - off_a) + t * hl;
                 f[j] = HRM_EXP(-(t > tau_a[ch] ? t : tau_a[ch])) * pt[j].gq[ch];
             } else {
                 f[j] = pt[j].tr[ch] * pt[j].gq[ch];
             }
-            rk += hrm__gk_wk[j] * f[j];
-            rg += hrm__gk_wg[j] * f[j];
-            rabs += hrm__gk_wk[j] * HRM_FABS(f[j]);
+            rk += R->wk[j] * f[j];
+            rg += R->wg[j] * f[j];
+            rabs += R->wk[j] * HRM_FABS(f[j]);
         }
-        mean = rk / 2;
-        for (j = 0; j < 15; ++j) rasc += hrm__gk_wk[j] * HRM_FABS(f[j] - mean);
         K[n] = rk * hl;
         if (is_tau) K[n] += c->sbar[ch] * (off_b - off_a);
         ek[n] = HRM_FABS((rk - rg) * hl);
         eend = 0;
-        if (!is_tau && c->have_ends) {
-            /* An interval at an end of the ray sees the sample there: S at
-               the end against its linear extrapolation from the two nearest
-               nodes; a mismatch over the unsampled stretch (a thin layer
-               at the camera or at the surface) counts as error. */
+        if (!is_tau) {
+            /* An interval whose end was sampled (an end of the ray, or
+               the centre of the interval it was split from) sees the
+               sample there: S at the end against its linear extrapolation
+               from the two nearest nodes; a mismatch over the unsampled
+               stretch (a thin layer at the camera or at the surface, a
+               shadow's edge between the end and the first node) counts
+               as error. */
             int e;
             for (e = 0; e < 2; ++e) {
-                int j0 = e ? 14 : 0, j1 = e ? 13 : 1;
+                int j0 = e ? N - 1 : 0, j1 = e ? N - 2 : 1;
                 hrm_real xe = e ? 1 : -1, s0, s1, se, gap, att;
-                /* (an infinite ray's far end is where the warp stops:
-                   no surface, no layer there) */
-                if (e ? b != c->pb || !HRM__FINITE(c->T) : a != c->pa) continue;
+                if (!(e ? Sb : Sa)) continue;
                 s0 = pt[j0].J > 0 ? pt[j0].gq[ch] / pt[j0].J : 0;
                 s1 = pt[j1].J > 0 ? pt[j1].gq[ch] / pt[j1].J : 0;
-                se = c->end[e].J > 0 ? c->end[e].gq[ch] / c->end[e].J : 0;
-                gap = HRM_FABS(xe - hrm__gk_x[j0]) * HRM_FABS(hl);
+                se = (e ? Sb : Sa)[ch];
+                gap = HRM_FABS(xe - R->x[j0]) * HRM_FABS(hl);
                 /* weighed by the attenuation at the nearest node, as
                    that node's own value is (absolute in closed form,
                    relative to the interval's start when coupled) */
                 att = pt[j0].gq[ch] != 0 ? f[j0] / pt[j0].gq[ch]
                     : c->closed ? pt[j0].tr[ch] : 1;
-                eend += HRM_FABS(se - (s0 + (s0 - s1) * (xe - hrm__gk_x[j0]) /
-                                               (hrm__gk_x[j0] - hrm__gk_x[j1]))) *
+                eend += HRM_FABS(se - (s0 + (s0 - s1) * (xe - R->x[j0]) /
+                                               (R->x[j0] - R->x[j1]))) *
                         pt[j0].J * gap * att;
             }
         }
-        eq[n] = ek[n];
-        rasc *= HRM_FABS(hl);
         rabs *= HRM_FABS(hl);
-        if (rasc != 0 && eq[n] != 0) {
-            hrm_real r = 200 * eq[n] / rasc;
-            r = r * HRM_SQRT(r); /* QUADPACK's (200 e / rasc)^1.5 */
-            eq[n] = rasc * (r < 1 ? r : 1);
-        }
-        if (eq[n] < 50 * HRM__EPS * rabs) eq[n] = 50 * HRM__EPS * rabs;
+        if (ek[n] < 50 * HRM__EPS * rabs) ek[n] = 50 * HRM__EPS * rabs;
         ek[n] += eend;
-        eq[n] += eend;
+        if (Sm && !is_tau) hrm__source_of(&pt[N / 2], ch, &Sm[ch]);
     }
 }
 
 /* The ray's two ends, sampled once: Gauss-Kronrod's nodes never reach an
    interval's ends, so without them a thin layer at the camera or at the
-   surface could pass unseen (hrm__gk15). Two evaluations. */
-static void hrm__gk_ends(hrm__ctx *c)
+   surface could pass unseen (hrm__gk). Two evaluations. S receives the
+   source there; has[1] is 0 on an infinite ray (its far end is where the
+   warp stops: no surface, no layer there). */
+static void hrm__gk_ends(hrm__ctx *c, hrm_real S[2][HRM__CH], int has[2])
 {
-    hrm__eval(c, c->pa, &c->end[0]);
-    hrm__eval(c, c->pb, &c->end[1]);
-    c->have_ends = 1;
+    hrm__pt e;
+    int i, k;
+    for (k = 0; k < 2; ++k) {
+        hrm__eval(c, k ? c->pb : c->pa, &e);
+        for (i = 0; i < HRM__CH; ++i) hrm__source_of(&e, i, &S[k][i]);
+        has[k] = k == 0 || HRM__FINITE(c->T);
+    }
 }
 
-/* Gauss-Kronrod, Munoz's local mode: an interval whose |K - G| exceeds its
-   share of the tolerance is split in two and its 15 samples are discarded.
-   The initial intervals are integrated first, relative to tau at their own
-   left ends (their sum is the scale); then intervals finish left to right,
-   so tau at each left end is final. */
-
-static void hrm__gk_local(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
+/* One interval [a0, b0] finished left to right from tau at its left end
+   (acc), its own increments and estimates relative to that end given (K0,
+   E0); a refused interval is split in two and its samples discarded. The
+   source at a0 and b0 where sampled (Sa, Sb, or 0). */
+static void hrm__gk_local_one(hrm__ctx *c, hrm_real a0, hrm_real b0, const hrm_real *K0,
+                              const hrm_real *E0, const hrm_real *Sa, const hrm_real *Sb,
+                              hrm_real acc[HRM__NY])
 {
     hrm_real stack_a[HRM_MAX_DEPTH + 2], stack_b[HRM_MAX_DEPTH + 2], stack_r[HRM_MAX_DEPTH + 2];
-    int stack_d[HRM_MAX_DEPTH + 2];
+    int stack_d[HRM_MAX_DEPTH + 2], top = 1, i;
+
+    stack_a[0] = a0;
+    stack_b[0] = b0;
+    stack_d[0] = 0;
+    stack_r[0] = 0;
+    while (top > 0) {
+        hrm_real a = stack_a[top - 1], b = stack_b[top - 1], parent = stack_r[top - 1];
+        hrm_real K[HRM__NY], ek[HRM__NY], y1[HRM__NY], ratio;
+        int d = stack_d[--top], split;
+        long reserve = c->gk->n * ((long)top + 2);
+        if (d == 0) { /* integrated already, relative to its left end */
+            for (i = 0; i < HRM__NY; ++i) {
+                hrm_real f = i < HRM__CH || c->closed ? 1 : HRM_EXP(-acc[i % HRM__CH]);
+                K[i] = f * K0[i];
+                ek[i] = f * E0[i];
+            }
+        } else {
+            hrm__gk(c, a, b, acc, K, ek, a == a0 ? Sa : 0, b == b0 ? Sb : 0, 0);
+        }
+        if (c->status != HRM_OK) return;
+        for (i = 0; i < HRM__NY; ++i) y1[i] = acc[i] + K[i];
+        ratio = hrm__ratio(c, HRM_CONTROL_PI, a, b, acc, y1, ek);
+        split = ratio > 1 && !hrm__rough_ok(c, ratio, parent, a, b, acc, y1, ek);
+        if (split && (d >= HRM_MAX_DEPTH || HRM_FABS(b - a) / 2 < c->h_min)) {
+            if (hrm__ratio(c, HRM__JUMP, a, b, acc, y1, ek) > 1)
+                hrm__warn(c, d >= HRM_MAX_DEPTH ? HRM_WARN_STORAGE : HRM_WARN_H_MIN);
+            split = 0;
+        }
+        if (split && c->stats.evals + reserve > c->max_evals) {
+            hrm__warn(c, HRM_WARN_MAX_EVALS);
+            split = 0;
+        }
+        if (split) {
+            stack_a[top] = (a + b) / 2;
+            stack_b[top] = b;
+            stack_r[top] = ratio;
+            stack_d[top++] = d + 1;
+            stack_a[top] = a;
+            stack_b[top] = (a + b) / 2;
+            stack_r[top] = ratio;
+            stack_d[top++] = d + 1;
+            c->stats.rejected++;
+        } else {
+            memcpy(acc, y1, sizeof y1);
+            hrm__accepted(c, ek);
+            c->stats.steps++;
+        }
+    }
+}
+
+/* Gauss-Kronrod, Munoz's local mode: the initial intervals are integrated
+   first, relative to tau at their own left ends (their sum is the scale);
+   then each is finished left to right (hrm__gk_local_one), so tau at each
+   left end is final. */
+static void hrm__gk_local(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
+{
     hrm_real K0[HRM_GK_INITIAL][HRM__NY], E0[HRM_GK_INITIAL][HRM__NY];
-    hrm_real span = c->pb - c->pa, zero[HRM__NY], eq[HRM__NY], tot[HRM__NY];
-    int top, k, i, ch;
+    hrm_real span = c->pb - c->pa, zero[HRM__NY], tot[HRM__NY], S[2][HRM__CH];
+    int k, ch, has[2];
 
     if (n0 > HRM_GK_INITIAL) n0 = HRM_GK_INITIAL;
-    hrm__gk_ends(c);
+    hrm__gk_ends(c, S, has);
     hrm__fill(zero, HRM__NY, 0);
     hrm__fill(tot, HRM__NY, 0);
     for (k = 0; k < n0; ++k) {
         hrm_real a = c->pa + span * ((hrm_real)k / (hrm_real)n0);
         hrm_real b = k + 1 == n0 ? c->pb : c->pa + span * ((hrm_real)(k + 1) / (hrm_real)n0);
-        hrm__gk15(c, a, b, zero, K0[k], E0[k], eq);
+        hrm__gk(c, a, b, zero, K0[k], E0[k], k == 0 ? S[0] : 0, k + 1 == n0 && has[1] ? S[1] : 0, 0);
         for (ch = 0; ch < HRM__CH; ++ch) {
             hrm_real f = c->closed ? 1 : HRM_EXP(-tot[ch]);
             tot[ch] += K0[k][ch];
@@ -2787,56 +2929,10 @@ static void hrm__gk_local(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
     hrm__set_scale(c, tot);
 
     hrm__fill(acc, HRM__NY, 0);
-    for (k = 0; k < n0; ++k) {
-        stack_a[0] = c->pa + span * ((hrm_real)k / (hrm_real)n0);
-        stack_b[0] = k + 1 == n0 ? c->pb : c->pa + span * ((hrm_real)(k + 1) / (hrm_real)n0);
-        stack_d[0] = 0;
-        stack_r[0] = 0;
-        top = 1;
-        while (top > 0) {
-            hrm_real a = stack_a[top - 1], b = stack_b[top - 1], parent = stack_r[top - 1];
-            hrm_real K[HRM__NY], ek[HRM__NY], y1[HRM__NY], ratio;
-            int d = stack_d[--top], split;
-            long reserve = 15 * ((long)top + 2);
-            if (d == 0) { /* integrated already, relative to its left end */
-                for (i = 0; i < HRM__NY; ++i) {
-                    hrm_real f = i < HRM__CH || c->closed ? 1 : HRM_EXP(-acc[i % HRM__CH]);
-                    K[i] = f * K0[k][i];
-                    ek[i] = f * E0[k][i];
-                }
-            } else {
-                hrm__gk15(c, a, b, acc, K, ek, eq);
-            }
-            if (c->status != HRM_OK) return;
-            for (i = 0; i < HRM__NY; ++i) y1[i] = acc[i] + K[i];
-            ratio = hrm__ratio(c, HRM_CONTROL_PI, a, b, acc, y1, ek);
-            split = ratio > 1 && !hrm__rough_ok(c, ratio, parent, a, b, acc, y1, ek);
-            if (split && (d >= HRM_MAX_DEPTH || HRM_FABS(b - a) / 2 < c->h_min)) {
-                if (hrm__ratio(c, HRM__JUMP, a, b, acc, y1, ek) > 1)
-                    hrm__warn(c, d >= HRM_MAX_DEPTH ? HRM_WARN_STORAGE : HRM_WARN_H_MIN);
-                split = 0;
-            }
-            if (split && c->stats.evals + reserve > c->max_evals) {
-                hrm__warn(c, HRM_WARN_MAX_EVALS);
-                split = 0;
-            }
-            if (split) {
-                stack_a[top] = (a + b) / 2;
-                stack_b[top] = b;
-                stack_r[top] = ratio;
-                stack_d[top++] = d + 1;
-                stack_a[top] = a;
-                stack_b[top] = (a + b) / 2;
-                stack_r[top] = ratio;
-                stack_d[top++] = d + 1;
-                c->stats.rejected++;
-            } else {
-                memcpy(acc, y1, sizeof y1);
-                hrm__accepted(c, ek);
-                c->stats.steps++;
-            }
-        }
-    }
+    for (k = 0; k < n0 && c->status == HRM_OK; ++k)
+        hrm__gk_local_one(c, c->pa + span * ((hrm_real)k / (hrm_real)n0),
+                          k + 1 == n0 ? c->pb : c->pa + span * ((hrm_real)(k + 1) / (hrm_real)n0),
+                          K0[k], E0[k], k == 0 ? S[0] : 0, k + 1 == n0 && has[1] ? S[1] : 0, acc);
 }
 
 /* Worst-first refinement (QUADPACK QAG's strategy), shared by nested
@@ -2851,8 +2947,10 @@ static void hrm__gk_local(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
    left; with Tr known at the nodes that factor is 1. */
 typedef struct hrm__iv {
     hrm_real a, b, V[HRM__NY], E[HRM__NY];
-    hrm_real D[HRM__NY]; /* nested Simpson: |S2 - S1| */
+    hrm_real D[HRM__NY]; /* |S2 - S1| or |K - G| */
     int s[4]; /* nested Simpson: its samples at a, a + h/4, a + h/2, a + 3h/4 */
+    hrm_real Sa[HRM__CH], Sb[HRM__CH], Sm[HRM__CH]; /* Gauss-Kronrod: the source */
+    int ha, hb; /* at a and b, where sampled; Sm at the centre node */
 } hrm__iv;
 
 typedef struct hrm__wf {
@@ -2865,7 +2963,7 @@ typedef struct hrm__wf {
 /* The interval's increments and estimates by its rule. */
 static void hrm__wf_rule(hrm__ctx *c, hrm__wf *w, hrm__iv *v, int b_sample)
 {
-    hrm_real zero[HRM__NY], eq[HRM__NY], ek[HRM__NY];
+    hrm_real zero[HRM__NY];
     int i;
     hrm__fill(zero, HRM__NY, 0);
     if (w->pool) {
@@ -2873,10 +2971,38 @@ static void hrm__wf_rule(hrm__ctx *c, hrm__wf *w, hrm__iv *v, int b_sample)
         hrm__ns_five(c, &P[v->s[0]], &P[v->s[1]], &P[v->s[2]], &P[v->s[3]], &P[b_sample], zero,
                      v->V, v->E);
     } else {
-        hrm__gk15(c, v->a, v->b, zero, v->V, ek, eq);
-        memcpy(v->E, ek, sizeof ek);
+        hrm__gk(c, v->a, v->b, zero, v->V, v->E, v->ha ? v->Sa : 0, v->hb ? v->Sb : 0, v->Sm);
     }
     for (i = 0; i < HRM__NY; ++i) v->D[i] = v->E[i] = HRM_FABS(v->E[i]);
+}
+
+/* E = |S2 - S1| / 5 estimates S2's error with a factor 3 of margin once
+   the halves l, r of an interval par are in the asymptotic regime, where
+   S2 - S1 falls like h^5: 16 times in the two halves together. There the
+   parent's miss of the halves' sum, |V - (V_l + V_r)|, measures the error
+   of its Richardson-corrected value, which falls faster still: its ratio
+   to the parent's |S2 - S1|, where smaller than 1/5, is the halves' factor
+   instead (as for Gauss-Kronrod in hrm__wf_split). Until a split has shown
+   that fall, S2 - S1 itself is the estimate: a boundary layer that a few
+   samples cannot resolve (a thick medium) or an oscillation they alias
+   leaves the corrected sum as far off as S2 and S1 are apart. (Measured on
+   the bench's smooth scenes, rtol 1e-2..1e-10: worst HRM_OK run 0.6 rtol,
+   median 0.006; trusting a fall of 8 times let smoke through at 5.7 rtol,
+   an eighth of the measured ratio at 4.1.) */
+static void hrm__ns_trust(const hrm__ctx *c, const hrm__iv *par, hrm__iv *l, hrm__iv *r)
+{
+    int j;
+    for (j = 0; j < HRM__NY; ++j) {
+        hrm_real q = HRM__R(0.2), f = 1;
+        if (!(l->D[j] + r->D[j] <= par->D[j] / 16)) continue;
+        if (j >= HRM__CH) {
+            if (!c->closed) f = HRM_EXP(-l->V[j - HRM__CH]);
+            q = HRM_FABS(par->V[j] - l->V[j] - f * r->V[j]) / par->D[j];
+            q = q < HRM__R(0.2) ? q : HRM__R(0.2);
+        }
+        l->E[j] *= q;
+        r->E[j] *= q;
+    }
 }
 
 /* Split interval k in place into its halves. Nested Simpson: the halves
@@ -2908,31 +3034,25 @@ static void hrm__wf_split(hrm__ctx *c, hrm__wf *w, int k)
         r->s[3] = q + 3;
         hrm__wf_rule(c, w, l, par.s[2]);
         hrm__wf_rule(c, w, r, b_sample);
-        /* E = |S2 - S1| / 5 estimates S2's error with a factor 3 of margin
-           once the halves are in the asymptotic regime, where S2 - S1 falls
-           like h^5: 16 times in the two halves together. Until a split has
-           shown that fall, S2 - S1 itself is the estimate: a boundary layer
-           that a few samples cannot resolve (a thick medium) or an
-           oscillation they alias leaves the Richardson-corrected sum as far
-           off as S2 and S1 are apart. (Measured on the bench's smooth
-           scenes, rtol 1e-2..1e-10: worst HRM_OK run 0.4 rtol; trusting a
-           fall of 8 times let smoke through at 5.7 rtol.) */
-        for (j = 0; j < HRM__NY; ++j)
-            if (l->D[j] + r->D[j] <= par.D[j] / 16) {
-                l->E[j] /= 5;
-                r->E[j] /= 5;
-            }
+        hrm__ns_trust(c, &par, l, r);
     } else {
+        /* the parent's centre node is the halves' common end */
+        memcpy(l->Sb, par.Sm, sizeof par.Sm);
+        memcpy(r->Sa, par.Sm, sizeof par.Sm);
+        memcpy(r->Sb, par.Sb, sizeof par.Sb);
+        l->hb = r->ha = 1;
+        r->hb = par.hb;
         hrm__wf_rule(c, w, l, 0);
         hrm__wf_rule(c, w, r, 0);
-        /* |K - G| bounds G7's error, not K15's: K15 is exact to degree 22
-           and G7 to 13, so K15's error falls like h^23 where |K - G| falls
-           like h^15. Once a split shows |K - G| falling (4 times at
-           least), the parent's own miss |K - (K_l + K_r)| measures K15's
-           error on it, and its ratio to the parent's |K - G|, applied to
-           the halves, overstates theirs by 2^8 in the asymptotic regime.
-           (A sixteenth of it let the worst HRM_OK run on the bench's smooth
-           scenes reach 13 rtol: the regime is not reached that early.) */
+        /* |K - G| bounds G's error, not K's: K15 is exact to degree 22 and
+           G7 to 13 (K7 to 11, G3 to 5), so K's error falls like h^23
+           (h^13) where |K - G| falls like h^15 (h^7). Once a split shows
+           |K - G| falling (4 times at least), the parent's own miss
+           |K - (K_l + K_r)| measures K's error on it, and its ratio to the
+           parent's |K - G|, applied to the halves, overstates theirs by
+           2^8 (2^6) in the asymptotic regime. (A sixteenth of it let the
+           worst HRM_OK run on the bench's smooth scenes reach 13 rtol with
+           K15: the regime is not reached that early.) */
         for (j = 0; j < HRM__NY; ++j) {
             hrm_real f = 1, q, fl;
             if (!(l->D[j] + r->D[j] <= par.D[j] / 4) || par.D[j] <= 0) continue;
@@ -3011,7 +3131,7 @@ static int hrm__wf_sum(hrm__ctx *c, const hrm__wf *w, hrm_real acc[HRM__NY], int
    was met (the caller finishes or warns), else 0. */
 static int hrm__worst_first(hrm__ctx *c, hrm__wf *w, hrm_real acc[HRM__NY])
 {
-    int cost = w->pool ? 4 : 30, roundoff = 0, k, ch;
+    int cost = w->pool ? 4 : 2 * c->gk->n, roundoff = 0, k, ch;
     for (;;) {
         hrm__iv par;
         if (c->status != HRM_OK) return 0;
@@ -3051,27 +3171,52 @@ static int hrm__worst_first(hrm__ctx *c, hrm__wf *w, hrm_real acc[HRM__NY])
     }
 }
 
-/* Gauss-Kronrod, global mode: worst first from n0 intervals. */
+/* After a worst-first phase that filled its storage: the scale of the
+   total found, and the sums restarted for a left-to-right finish. */
+static void hrm__finish_scale(hrm__ctx *c, const hrm_real *tot, hrm_real acc[HRM__NY])
+{
+    int i;
+    if (!c->scale_fixed)
+        for (i = 0; i < HRM__NY; ++i) c->scale[i] = HRM_FABS(tot[i]) / 2;
+    hrm__fill(acc, HRM__NY, 0);
+    hrm__fill(c->err_acc, HRM__CH, 0);
+}
+
+/* Gauss-Kronrod, global mode: worst first from n0 intervals while they fit
+   in HRM_GK_INTERVALS, then each is finished left to right. */
 static void hrm__gk_global(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
 {
     hrm__iv iv[HRM_GK_INTERVALS];
     hrm__wf w;
-    hrm_real span = c->pb - c->pa;
-    int i;
+    hrm_real span = c->pb - c->pa, S[2][HRM__CH], tot[HRM__NY];
+    int i, has[2];
 
     w.iv = iv;
     w.cap = HRM_GK_INTERVALS;
     w.n = n0 < HRM_GK_INTERVALS ? n0 : HRM_GK_INTERVALS;
     w.pool = 0;
     w.np = w.end = 0;
-    hrm__gk_ends(c);
+    hrm__gk_ends(c, S, has);
     for (i = 0; i < w.n; ++i) {
         iv[i].a = c->pa + span * ((hrm_real)i / (hrm_real)w.n);
         iv[i].b = i + 1 == w.n ? c->pb : c->pa + span * ((hrm_real)(i + 1) / (hrm_real)w.n);
+        iv[i].ha = i == 0;
+        iv[i].hb = i + 1 == w.n && has[1];
+        memcpy(iv[i].Sa, S[0], sizeof S[0]);
+        memcpy(iv[i].Sb, S[1], sizeof S[1]);
         hrm__wf_rule(c, &w, &iv[i], 0);
         c->stats.steps++;
     }
-    if (hrm__worst_first(c, &w, acc)) hrm__warn(c, HRM_WARN_STORAGE);
+    if (!hrm__worst_first(c, &w, tot)) {
+        memcpy(acc, tot, sizeof tot);
+        return;
+    }
+    /* storage full: each interval is finished left to right, at the
+       scale of the total found */
+    hrm__finish_scale(c, tot, acc);
+    for (i = 0; i < w.n && c->status == HRM_OK; ++i)
+        hrm__gk_local_one(c, iv[i].a, iv[i].b, iv[i].V, iv[i].E, iv[i].ha ? iv[i].Sa : 0,
+                          iv[i].hb ? iv[i].Sb : 0, acc);
 }
 
 /* Nested Simpson: worst first from the initial panels while the intervals
@@ -3107,11 +3252,9 @@ static void hrm__nested_simpson(hrm__ctx *c, int panels, hrm_real acc[HRM__NY])
         memcpy(acc, tot, sizeof tot);
         return;
     }
-    /* storage full: the scale is the total found */
-    if (!c->scale_fixed)
-        for (i = 0; i < HRM__NY; ++i) c->scale[i] = HRM_FABS(tot[i]) / 2;
-    hrm__fill(acc, HRM__NY, 0);
-    hrm__fill(c->err_acc, HRM__CH, 0);
+    /* storage full: each interval whose estimate exceeds its share is
+       finished left to right from its halves */
+    hrm__finish_scale(c, tot, acc);
     for (k = 0; k < w.n && c->status == HRM_OK; ++k) {
         const hrm__iv *v = &iv[k];
         const hrm__pt *P = pool;
@@ -3198,6 +3341,9 @@ static hrm_status hrm__resolve(const hrm_options *in, hrm_options *o)
     if (o->control == HRM_CONTROL_DEFAULT) o->control = d.control;
     if ((int)o->gk_mode < 0 || (int)o->gk_mode > (int)HRM_GK_LOCAL) return HRM_ERR_BAD_OPTION;
     if (o->gk_mode == HRM_GK_DEFAULT) o->gk_mode = d.gk_mode;
+    if ((int)o->gk_rule < 0 || (int)o->gk_rule > (int)HRM_GK_K7) return HRM_ERR_BAD_OPTION;
+    if (o->gk_rule == HRM_GK_RULE_DEFAULT)
+        o->gk_rule = o->gk_mode == HRM_GK_LOCAL ? HRM_GK_K15 : HRM_GK_K7;
     if ((int)o->tau_mode < 0 || (int)o->tau_mode > (int)HRM_TAU_COUPLED) return HRM_ERR_BAD_OPTION;
     if (o->tau_mode == HRM_TAU_DEFAULT) o->tau_mode = d.tau_mode;
     if (!(HRM__FINITE(o->rtol) && o->rtol >= 0 && HRM__FINITE(o->atol) && o->atol >= 0 &&
@@ -3221,7 +3367,8 @@ static hrm_status hrm__resolve(const hrm_options *in, hrm_options *o)
     /* A budget below one step of the method could not be honoured. */
     if (o->max_evals < (mi->family == HRM__PAIR ? hrm__stage_cost(mi->tb) + 1L
                         : o->method == HRM_NESTED_SIMPSON ? 4L * o->steps + 1
-                        : o->method == HRM_GAUSS_KRONROD ? 15L * o->steps + 2 : 0L))
+                        : o->method == HRM_GAUSS_KRONROD
+                            ? (o->gk_rule == HRM_GK_K7 ? 7L : 15L) * o->steps + 2 : 0L))
         return HRM_ERR_BAD_OPTION;
     return HRM_OK;
 }
@@ -3254,6 +3401,7 @@ static hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, const hrm_medium *m, 
     }
     c->atol = o->atol;
     c->max_evals = o->max_evals;
+    c->gk = o->gk_rule == HRM_GK_K7 ? &hrm__k7 : &hrm__k15;
     c->rough_left = HRM__JUMP;
     if (c->homog) {
         for (i = 0; i < HRM__CH; ++i) {

@@ -95,19 +95,21 @@ static const char *ad_kind_name(int kind)
 typedef struct ad_cfg {
     hrm_method method;
     hrm_gk_mode gk;
-    int cost;           /* new evaluations per step / split / K15 */
+    hrm_gk_rule rule;
+    int cost;           /* new evaluations per step / split / Kronrod rule */
     const char *name;
 } ad_cfg;
 
 static const ad_cfg ad_cfgs[] = {
-    { HRM_NESTED_SIMPSON, HRM_GK_DEFAULT, 2, "nested-simpson" },
-    { HRM_GAUSS_KRONROD, HRM_GK_GLOBAL, 15, "gk-global" },
-    { HRM_GAUSS_KRONROD, HRM_GK_LOCAL, 15, "gk-local" },
-    { HRM_BOGACKI_SHAMPINE, HRM_GK_DEFAULT, 3, "bogacki-shampine" },
-    { HRM_DORMAND_PRINCE, HRM_GK_DEFAULT, 5, "dormand-prince" },
-    { HRM_FEHLBERG, HRM_GK_DEFAULT, 5, "fehlberg" },
-    { HRM_CASH_KARP, HRM_GK_DEFAULT, 5, "cash-karp" },
-    { HRM_VERNER, HRM_GK_DEFAULT, 6, "verner" },
+    { HRM_NESTED_SIMPSON, HRM_GK_DEFAULT, HRM_GK_RULE_DEFAULT, 2, "nested-simpson" },
+    { HRM_GAUSS_KRONROD, HRM_GK_GLOBAL, HRM_GK_RULE_DEFAULT, 7, "gk-global" },
+    { HRM_GAUSS_KRONROD, HRM_GK_GLOBAL, HRM_GK_K15, 15, "gk-global-k15" },
+    { HRM_GAUSS_KRONROD, HRM_GK_LOCAL, HRM_GK_RULE_DEFAULT, 15, "gk-local" },
+    { HRM_BOGACKI_SHAMPINE, HRM_GK_DEFAULT, HRM_GK_RULE_DEFAULT, 3, "bogacki-shampine" },
+    { HRM_DORMAND_PRINCE, HRM_GK_DEFAULT, HRM_GK_RULE_DEFAULT, 5, "dormand-prince" },
+    { HRM_FEHLBERG, HRM_GK_DEFAULT, HRM_GK_RULE_DEFAULT, 5, "fehlberg" },
+    { HRM_CASH_KARP, HRM_GK_DEFAULT, HRM_GK_RULE_DEFAULT, 5, "cash-karp" },
+    { HRM_VERNER, HRM_GK_DEFAULT, HRM_GK_RULE_DEFAULT, 6, "verner" },
 };
 #define AD_NCFG ((int)(sizeof ad_cfgs / sizeof ad_cfgs[0]))
 
@@ -115,6 +117,7 @@ static hrm_options ad_options(const ad_cfg *cfg, double rtol)
 {
     hrm_options o = hrm_default_options(cfg->method);
     o.gk_mode = cfg->gk;
+    o.gk_rule = cfg->rule;
     o.rtol = (hrm_real)rtol;
     o.max_evals = 1000000; /* the low-order methods need ~1e5 at rtol 1e-9 */
     return o;
@@ -250,10 +253,10 @@ static void ad_eval_counts(void)
                         want = 2L * n0 + 1 + 2 * (r.stats.steps + r.stats.rejected);
                         steps = n0 + r.stats.rejected;
                     } else if (cfg->method == HRM_GAUSS_KRONROD) {
-                        /* 15 per K15: n0 initial intervals, two halves per
-                           split (global: bisection; local: both halves),
-                           and the ray's two ends */
-                        want = 15L * (n0 + 2 * r.stats.rejected) + 2;
+                        /* 7 or 15 per Kronrod rule: n0 initial intervals,
+                           two halves per split (global: bisection; local:
+                           both halves), and the ray's two ends */
+                        want = (long)cfg->cost * (n0 + 2 * r.stats.rejected) + 2;
                         steps = n0 + r.stats.rejected;
                     } else {
                         /* the start sample, then at most `cost` new per
@@ -405,7 +408,7 @@ static void ad_limits(void)
     for (i = 0; i < AD_NCFG; ++i) {
         const ad_cfg *cfg = &ad_cfgs[i];
         long budget, minimum = is_pair(cfg->method) ? cfg->cost + 1L
-                             : cfg->method == HRM_GAUSS_KRONROD ? 17L : 4L * 2 + 1;
+                             : cfg->method == HRM_GAUSS_KRONROD ? cfg->cost + 2L : 4L * 2 + 1;
         long over = 0, badst = 0, unfinite = 0, miscount = 0, tried = 0, full_evals;
         double t0, t1, worst = 0, rtol = real_is_float() ? 3e-5 : 1e-6;
         hrm_options o = ad_options(cfg, rtol);
@@ -464,7 +467,7 @@ static void ad_limits(void)
         const ad_cfg *cfg = &ad_cfgs[i];
         int steps = is_pair(cfg->method) ? 0 : 3;
         long cost = is_pair(cfg->method) ? cfg->cost + 1L
-                  : cfg->method == HRM_GAUSS_KRONROD ? 15L * steps + 2 : 4L * steps + 1;
+                  : cfg->method == HRM_GAUSS_KRONROD ? (long)cfg->cost * steps + 2 : 4L * steps + 1;
         hrm_options o = ad_options(cfg, 1e-4);
         hrm_medium m = problem_medium(&hom);
         hrm_result r;
@@ -557,7 +560,7 @@ static void ad_shadow(void)
        point of the bisection (p = 2.625 from t0), inside the gap before
        the first K15 node of [2.625, 2.75]: no sample sees the sliver. */
     if (!real_is_float()) {
-        hrm_options o = ad_options(&ad_cfgs[1], 1e-8);
+        hrm_options o = ad_options(&ad_cfgs[2], 1e-8);
         hrm_medium m;
         hrm_result r;
         hrm_status st;
