@@ -1036,6 +1036,7 @@ typedef struct hrm__ctx {
     hrm_real src_max[HRM__CH]; /* the largest Le or Li sampled: S / sigma_t
                                   is at most that (a weighted mean of them) */
     int scale_fixed;           /* the scale is the solution's, not a pilot's */
+    hrm_real h_res;            /* the smallest step t resolves (no warp) */
     int noise_only;            /* the last step or interval judged passed on
                                   the round-off floor alone */
     const struct hrm__gk_pair *gk; /* Gauss-Kronrod: the pair */
@@ -2471,6 +2472,14 @@ static void hrm__warn(hrm__ctx *c, hrm_status w)
     if (c->warning == HRM_OK || c->warning == HRM_WARN_RTOL_CLIPPED) c->warning = w;
 }
 
+/* What a refusal at h_min means: the floor the caller or the range set
+   (HRM_WARN_H_MIN), or t's own resolution far from the origin
+   (HRM_WARN_ROUNDOFF). */
+static hrm_status hrm__h_min_status(const hrm__ctx *c)
+{
+    return c->h_min <= c->h_res ? HRM_WARN_ROUNDOFF : HRM_WARN_H_MIN;
+}
+
 /* The pair's estimate is of its lower-order solution, O(h^(k+1)) per
    step, but the higher-order one is returned, O(h^(k+2)): their ratio is
    about h / l, l the length over which the integrand changes, and
@@ -2558,7 +2567,7 @@ static void hrm__ivp_adaptive(hrm__ctx *c, const hrm__tableau *tb, hrm_control c
         if (!accept && hs <= c->h_min) {
             /* within the share of a rough step, h_min is no failure */
             accept = 1;
-            if (hrm__ratio(c, HRM__JUMP, p, q, y, ynew, err) > 1) hrm__warn(c, HRM_WARN_H_MIN);
+            if (hrm__ratio(c, HRM__JUMP, p, q, y, ynew, err) > 1) hrm__warn(c, hrm__h_min_status(c));
         }
         if (control == HRM_CONTROL_MUNOZ) {
             /* Munoz 2014 eq. 12 with e_i the relative error. */
@@ -2695,7 +2704,7 @@ static void hrm__ns_local(hrm__ctx *c, const hrm__pt *a, const hrm__pt *m, const
             for (i = 0; i < HRM__NY; ++i) y1[i] = acc[i] + val[i];
             if (!last) hrm__warn(c, HRM_WARN_MAX_EVALS);
             else if (hrm__ratio(c, HRM__JUMP, cur.a.p, cur.b.p, acc, y1, err) > 1)
-                hrm__warn(c, cur.depth >= HRM_MAX_DEPTH ? HRM_WARN_STORAGE : HRM_WARN_H_MIN);
+                hrm__warn(c, cur.depth >= HRM_MAX_DEPTH ? HRM_WARN_STORAGE : hrm__h_min_status(c));
             split = 0;
         } else {
             hrm__eval(c, (cur.a.p + cur.m.p) / 2, &ql);
@@ -2710,7 +2719,7 @@ static void hrm__ns_local(hrm__ctx *c, const hrm__pt *a, const hrm__pt *m, const
             if (split && (cur.depth + 1 >= HRM_MAX_DEPTH || HRM_FABS(H) / 8 < c->h_min)) {
                 /* its halves could not be refined further either */
                 if (hrm__ratio(c, HRM__JUMP, cur.a.p, cur.b.p, acc, y1, err) > 1)
-                    hrm__warn(c, cur.depth + 1 >= HRM_MAX_DEPTH ? HRM_WARN_STORAGE : HRM_WARN_H_MIN);
+                    hrm__warn(c, cur.depth + 1 >= HRM_MAX_DEPTH ? HRM_WARN_STORAGE : hrm__h_min_status(c));
                 split = 0;
             }
             if (split) {
@@ -2877,7 +2886,7 @@ static void hrm__gk_local_one(hrm__ctx *c, hrm_real a0, hrm_real b0, const hrm_r
         split = ratio > 1 && !hrm__rough_ok(c, ratio, parent, a, b, acc, y1, ek);
         if (split && (d >= HRM_MAX_DEPTH || HRM_FABS(b - a) / 2 < c->h_min)) {
             if (hrm__ratio(c, HRM__JUMP, a, b, acc, y1, ek) > 1)
-                hrm__warn(c, d >= HRM_MAX_DEPTH ? HRM_WARN_STORAGE : HRM_WARN_H_MIN);
+                hrm__warn(c, d >= HRM_MAX_DEPTH ? HRM_WARN_STORAGE : hrm__h_min_status(c));
             split = 0;
         }
         if (split && c->stats.evals + reserve > c->max_evals) {
@@ -3137,7 +3146,7 @@ static int hrm__worst_first(hrm__ctx *c, hrm__wf *w, hrm_real acc[HRM__NY])
         if (c->status != HRM_OK) return 0;
         if (hrm__wf_sum(c, w, acc, &k)) return 0;
         if (HRM_FABS(w->iv[k].b - w->iv[k].a) / (w->pool ? 8 : 2) < c->h_min) {
-            hrm__warn(c, HRM_WARN_H_MIN); /* the worst interval is at h_min */
+            hrm__warn(c, hrm__h_min_status(c)); /* the worst interval is at h_min */
             return 0;
         }
         if (w->n == w->cap) return 1;
@@ -3449,6 +3458,12 @@ static hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, const hrm_medium *m, 
     big = big > P ? big : P;
     c->h_min = o->h_min > 0 ? o->h_min
              : o->control == HRM_CONTROL_MUNOZ ? P / 1024 : 64 * HRM__EPS * big;
+    /* Without a warp an abscissa is t0 + p, resolved to eps |t0|: a step
+       below twice that could not place a node apart from its neighbours
+       (its evaluations would repeat earlier ones), so none is taken; one
+       refused there is taken with HRM_WARN_ROUNDOFF. */
+    c->h_res = c->warp == HRM_WARP_NONE ? 2 * HRM__EPS * HRM_FABS(c->t0) : 0;
+    if (c->h_min < c->h_res) c->h_min = c->h_res;
     if (c->h_min > c->h_max) c->h_min = c->h_max;
     return HRM_OK;
 }

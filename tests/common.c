@@ -102,7 +102,7 @@ void scene_reset_counts(scene *sc)
     sc->tr_bmax = -1e300;
     sc->tr_reversed = 0;
     sc->li_where_ss0 = sc->le_where_sa0 = 0;
-    sc->log_n = 0;
+    sc->log_n = sc->log_li_n = 0;
     sc->shadow_bad_status = 0;
 }
 
@@ -253,12 +253,31 @@ void const_Le(void *user, hrm_real t, hrm_real out[NCH])
     poison_out(sc, POISON_LE, out);
 }
 
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+long log_repeats(const double *log, int n)
+{
+    static const int cap = LOG_CAP;
+    double sorted[LOG_CAP];
+    long k, rep = 0;
+    if (n > cap) n = cap;
+    memcpy(sorted, log, sizeof(double) * (size_t)n);
+    qsort(sorted, (size_t)n, sizeof(double), cmp_double);
+    for (k = 1; k < n; ++k) rep += sorted[k] == sorted[k - 1];
+    return rep;
+}
+
 static void light_eval(void *user, hrm_real t, hrm_real out[NCH], int light)
 {
     scene *sc = (scene *)user;
     int c;
     sc->n_li++;
     touch(sc, t);
+    if (sc->log_li_n < LOG_CAP) sc->log_li[sc->log_li_n++] = (double)t;
     for (c = 0; c < NCH; ++c) out[c] = (hrm_real)light_value(sc, light, c, (double)t);
     poison_out(sc, POISON_LI, out);
 }

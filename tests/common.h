@@ -132,6 +132,8 @@ typedef struct scene {
     long li_where_ss0, le_where_sa0; /* calls where the term is zero */
     double log_le[LOG_CAP];     /* the t of every Le call */
     int log_n;
+    double log_li[LOG_CAP];     /* the t of every Li call */
+    int log_li_n;
     /* re-entrancy: the light's transmittance by a nested call of hrm */
     hrm_medium *shadow_ray;     /* medium of the nested rays */
     int shadow_use_solve;       /* 0: hrm_transmittance, 1: hrm_solve */
@@ -168,6 +170,8 @@ void het_sigma_t(void *user, hrm_real t, hrm_real out[NCH]);
 void het_absorber(void *user, hrm_real t, hrm_real out[NCH]);  /* sigma_a = sigma_t, counted as sigma_a */
 void het_transmittance(void *user, hrm_real ta, hrm_real tb, hrm_real out[NCH]);
 void const_Le(void *user, hrm_real t, hrm_real out[NCH]);      /* logs t in log_le */
+/* Abscissae logged twice or more (the log of Le or Li calls). */
+long log_repeats(const double *log, int n);
 hrm_spectrum_fn light_Li(int light);                           /* the Li callback of a light */
 
 /* ------------------------------------------------------------------------
