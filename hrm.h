@@ -2960,6 +2960,7 @@ typedef struct hrm__iv {
     int s[4]; /* nested Simpson: its samples at a, a + h/4, a + h/2, a + 3h/4 */
     hrm_real Sa[HRM__CH], Sb[HRM__CH], Sm[HRM__CH]; /* Gauss-Kronrod: the source */
     int ha, hb; /* at a and b, where sampled; Sm at the centre node */
+    char fell[HRM__NY]; /* nested Simpson: |S2 - S1| fell 8 times at its split */
 } hrm__iv;
 
 typedef struct hrm__wf {
@@ -2982,31 +2983,40 @@ static void hrm__wf_rule(hrm__ctx *c, hrm__wf *w, hrm__iv *v, int b_sample)
     } else {
         hrm__gk(c, v->a, v->b, zero, v->V, v->E, v->ha ? v->Sa : 0, v->hb ? v->Sb : 0, v->Sm);
     }
-    for (i = 0; i < HRM__NY; ++i) v->D[i] = v->E[i] = HRM_FABS(v->E[i]);
+    for (i = 0; i < HRM__NY; ++i) {
+        v->D[i] = v->E[i] = HRM_FABS(v->E[i]);
+        v->fell[i] = 0;
+    }
 }
 
 /* E = |S2 - S1| / 5 estimates S2's error with a factor 3 of margin once
-   the halves l, r of an interval par are in the asymptotic regime, where
-   S2 - S1 falls like h^5: 16 times in the two halves together. There the
-   parent's miss of the halves' sum, |V - (V_l + V_r)|, measures the error
-   of its Richardson-corrected value, which falls faster still: its ratio
-   to the parent's |S2 - S1|, where smaller than 1/5, is the halves' factor
-   instead (as for Gauss-Kronrod in hrm__wf_split). Until a split has shown
-   that fall, S2 - S1 itself is the estimate: a boundary layer that a few
+   the halves are in the asymptotic regime, where S2 - S1 falls like h^5
+   (16 times in the two halves together). There the parent's miss of the
+   halves' sum, |V - (V_l + V_r)|, measures the error of its Richardson-
+   corrected value, which falls faster still: its ratio to the parent's
+   |S2 - S1| (at least the fall itself: a miss that cancels by chance is
+   no evidence), where smaller than 1/5, is the halves' factor instead (as
+   for Gauss-Kronrod in hrm__wf_split). The regime counts as reached when
+   |S2 - S1| fell 8 times at this split and at the parent's own: until
+   then S2 - S1 itself is the estimate, since a boundary layer that a few
    samples cannot resolve (a thick medium) or an oscillation they alias
    leaves the corrected sum as far off as S2 and S1 are apart. (Measured on
-   the bench's smooth scenes, rtol 1e-2..1e-10: worst HRM_OK run 0.6 rtol,
-   median 0.006; trusting a fall of 8 times let smoke through at 5.7 rtol,
-   an eighth of the measured ratio at 4.1.) */
+   the bench's smooth scenes, rtol 1e-2..1e-10: worst HRM_OK run 0.64
+   rtol, median 0.006; one fall of 8 let smoke through at 5.7 rtol, a fall
+   of 16 once made a budget of 65 samples 100 times worse than a uniform
+   Simpson rule on a smooth light.) */
 static void hrm__ns_trust(const hrm__ctx *c, const hrm__iv *par, hrm__iv *l, hrm__iv *r)
 {
     int j;
     for (j = 0; j < HRM__NY; ++j) {
-        hrm_real q = HRM__R(0.2), f = 1;
-        if (!(l->D[j] + r->D[j] <= par->D[j] / 16)) continue;
+        hrm_real q = HRM__R(0.2), f = 1, rho = (l->D[j] + r->D[j]) / par->D[j];
+        int fell = rho <= HRM__R(1.0) / 8;
+        l->fell[j] = r->fell[j] = fell;
+        if (!fell || !par->fell[j]) continue;
         if (j >= HRM__CH) {
             if (!c->closed) f = HRM_EXP(-l->V[j - HRM__CH]);
             q = HRM_FABS(par->V[j] - l->V[j] - f * r->V[j]) / par->D[j];
+            q = q > rho ? q : rho; /* a miss that cancels by chance is no evidence */
             q = q < HRM__R(0.2) ? q : HRM__R(0.2);
         }
         l->E[j] *= q;
