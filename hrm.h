@@ -240,9 +240,9 @@
    samples of L' at the step's distinct nodes: the top term of their Newton
    interpolation series, integrated over the step, is a second estimate,
    and the larger of the two counts (a step over a light's peak can fool
-   both embedded solutions alike; the stage values show it). At a jump,
-   where no series converges, the pair's own estimate judges the rough
-   step. Munoz's and
+   both embedded solutions alike; the stage values show it), rough steps
+   included: at a jump the series' top term falls like h, as the pair's
+   estimate does. Munoz's and
    Gonterman's controllers (options.control) keep their papers' own
    definitions: eq. 12 relative to |L| per step (whose step rule shrinks the
    step whenever rtol < 0.01: give h_min), and eq. 3.4 error per unit step.
@@ -2248,8 +2248,8 @@ static int hrm__rk_step(hrm__ctx *c, const hrm__tableau *tb, const hrm__pt *star
            a Newton interpolation series whose top term, integrated over
            the step, must be small if the step resolves the integrand.
            both: the larger of it and the pair's estimate. (At a jump the
-           series does not converge at any step: there the pair's own
-           estimate judges a rough step.) */
+           series does not converge, but its top term falls like h, as the
+           pair's estimate does: it judges rough steps too.) */
         memcpy(both, err, sizeof(hrm_real) * HRM__NY);
         for (n = HRM__CH; n < HRM__NY; ++n) {
             hrm_real d[HRM__MAX_STAGES], top;
@@ -2560,7 +2560,7 @@ static void hrm__ivp_adaptive(hrm__ctx *c, const hrm__tableau *tb, hrm_control c
         ratio = hrm__ratio(c, control, p, q, y, ynew, control == HRM_CONTROL_PI ? both : err);
         accept = ratio <= 1 || forced;
         if (!accept && control == HRM_CONTROL_PI && c->rough_left > 0 &&
-            hrm__rough(ratio, r_parent) && hrm__ratio(c, HRM__JUMP, p, q, y, ynew, err) <= 1) {
+            hrm__rough(ratio, r_parent) && hrm__ratio(c, HRM__JUMP, p, q, y, ynew, both) <= 1) {
             accept = 2;
             c->rough_left--;
         }
@@ -2587,9 +2587,11 @@ static void hrm__ivp_adaptive(hrm__ctx *c, const hrm__tableau *tb, hrm_control c
         }
         if (accept) {
             memcpy(y, ynew, sizeof ynew);
-            /* a rough step (a jump) or one at h_min was judged by the
-               pair's own estimate */
-            hrm__accepted(c, control == HRM_CONTROL_PI && accept == 1 && hs > c->h_min ? both : err);
+            /* the larger estimate counts for a rough step too: at a
+               spike on a node both embedded solutions are wrong alike
+               (a light's peak at the ray's start: Dormand-Prince 71%
+               too high with HRM_OK when the pair alone judged it) */
+            hrm__accepted(c, control == HRM_CONTROL_PI && hs > c->h_min ? both : err);
             p = q;
             if (have) start = end;
             c->stats.steps++;
