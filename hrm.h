@@ -2750,6 +2750,18 @@ static void hrm__ns_local(hrm__ctx *c, const hrm__pt *a, const hrm__pt *m, const
     }
 }
 
+/* What a Gauss-Kronrod interval knows of its surroundings and returns
+   for its halves: the source at its ends where sampled (the ray's ends,
+   the centre node of the interval it was split from), and a check sample
+   (a node of that interval inside this one, with its g); out, the source
+   at its centre node, its node of the largest source and whether the
+   check sample was left unexplained. */
+typedef struct hrm__gk_io {
+    hrm_real Sa[HRM__CH], Sb[HRM__CH], Sm[HRM__CH];
+    hrm_real xc, gqc[HRM__CH], xm, gqm[HRM__CH];
+    int ha, hb, hc, unexplained;
+} hrm__gk_io;
+
 /* The source S at a sample (per unit length: its g divided by ds/dp). */
 static void hrm__source_of(const hrm__pt *pt, int ch, hrm_real *S)
 {
@@ -2762,15 +2774,35 @@ static void hrm__source_of(const hrm__pt *pt, int ch, hrm_real *S)
    epsilons of the integral of |f| (QUADPACK's floor of round-off). The
    callers turn it into an estimate of K's (hrm__wf_split). */
 static void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, const hrm_real *tau_a,
-                    hrm_real *K, hrm_real *ek, const hrm_real *Sa, const hrm_real *Sb,
-                    hrm_real *Sm)
+                    hrm_real *K, hrm_real *ek, hrm__gk_io *io)
 {
     const hrm__gk_pair *R = c->gk;
+    const hrm_real *Sa = io->ha ? io->Sa : 0, *Sb = io->hb ? io->Sb : 0;
     hrm__pt pt[15];
-    hrm_real hl = (b - a) / 2, mid = (a + b) / 2, off_a = 0, off_b = 0, J;
-    int j, l, n, N = R->n;
+    hrm_real hl = (b - a) / 2, mid = (a + b) / 2, off_a = 0, off_b = 0, J, lw[15], big = -1;
+    int j, l, n, N = R->n, chk = io->hc && (io->xc - a) * (io->xc - b) < 0;
 
     for (j = 0; j < N; ++j) hrm__eval(c, 2 * j + 1 == N ? mid : mid + hl * R->x[j], &pt[j]);
+    if (chk) {
+        /* the Lagrange weights of the nodes at the check sample */
+        hrm_real xi = (io->xc - mid) / hl;
+        for (j = 0; j < N; ++j) {
+            lw[j] = 1;
+            for (l = 0; l < N; ++l)
+                if (l != j) lw[j] *= (xi - R->x[l]) / (R->x[j] - R->x[l]);
+        }
+    }
+    io->unexplained = 0;
+    for (j = 0; j < N; ++j) {
+        /* the node where the source is largest: the check of the halves */
+        hrm_real s = 0;
+        for (n = 0; n < HRM__CH; ++n) s += HRM_FABS(pt[j].gq[n]);
+        if (s > big) {
+            big = s;
+            io->xm = pt[j].p;
+            memcpy(io->gqm, pt[j].gq, sizeof io->gqm);
+        }
+    }
     if (c->coupled) {
         hrm__map(c, a, &off_a, &J);
         hrm__map(c, b, &off_b, &J);
@@ -2833,7 +2865,27 @@ static void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, const hrm_real *tau_a,
         rabs *= HRM_FABS(hl);
         if (ek[n] < 50 * HRM__EPS * rabs) ek[n] = 50 * HRM__EPS * rabs;
         ek[n] += eend;
-        if (Sm && !is_tau) hrm__source_of(&pt[N / 2], ch, &Sm[ch]);
+        if (chk && !is_tau) {
+            /* A sample of the interval this one was split from, inside
+               it: the nodes' interpolant there against the sample, over
+               a node's share of the interval. Smooth, it misses by less
+               than |K - G| (by h / l of it); a peak that the parent's
+               node sat on and these nodes straddle misses by the peak:
+               then that is the error, and the halves check it again. */
+            hrm_real p_at = 0, mis, att;
+            int jn = 0;
+            for (j = 0; j < N; ++j) {
+                p_at += lw[j] * pt[j].gq[ch];
+                if (HRM_FABS(pt[j].p - io->xc) < HRM_FABS(pt[jn].p - io->xc)) jn = j;
+            }
+            att = pt[jn].gq[ch] != 0 ? f[jn] / pt[jn].gq[ch] : c->closed ? pt[jn].tr[ch] : 1;
+            mis = HRM_FABS(io->gqc[ch] - p_at) * att * 2 * HRM_FABS(hl) / (hrm_real)N;
+            if (mis > ek[n]) {
+                ek[n] = mis;
+                io->unexplained = 1;
+            }
+        }
+        if (!is_tau) hrm__source_of(&pt[N / 2], ch, &io->Sm[ch]);
     }
 }
 
@@ -2880,7 +2932,13 @@ static void hrm__gk_local_one(hrm__ctx *c, hrm_real a0, hrm_real b0, const hrm_r
                 ek[i] = f * E0[i];
             }
         } else {
-            hrm__gk(c, a, b, acc, K, ek, a == a0 ? Sa : 0, b == b0 ? Sb : 0, 0);
+            hrm__gk_io io;
+            io.ha = a == a0 && Sa;
+            io.hb = b == b0 && Sb;
+            io.hc = 0;
+            if (io.ha) memcpy(io.Sa, Sa, sizeof io.Sa);
+            if (io.hb) memcpy(io.Sb, Sb, sizeof io.Sb);
+            hrm__gk(c, a, b, acc, K, ek, &io);
         }
         if (c->status != HRM_OK) return;
         for (i = 0; i < HRM__NY; ++i) y1[i] = acc[i] + K[i];
@@ -2930,7 +2988,13 @@ static void hrm__gk_local(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
     for (k = 0; k < n0; ++k) {
         hrm_real a = c->pa + span * ((hrm_real)k / (hrm_real)n0);
         hrm_real b = k + 1 == n0 ? c->pb : c->pa + span * ((hrm_real)(k + 1) / (hrm_real)n0);
-        hrm__gk(c, a, b, zero, K0[k], E0[k], k == 0 ? S[0] : 0, k + 1 == n0 && has[1] ? S[1] : 0, 0);
+        hrm__gk_io io;
+        io.ha = k == 0;
+        io.hb = k + 1 == n0 && has[1];
+        io.hc = 0;
+        memcpy(io.Sa, S[0], sizeof io.Sa);
+        memcpy(io.Sb, S[1], sizeof io.Sb);
+        hrm__gk(c, a, b, zero, K0[k], E0[k], &io);
         for (ch = 0; ch < HRM__CH; ++ch) {
             hrm_real f = c->closed ? 1 : HRM_EXP(-tot[ch]);
             tot[ch] += K0[k][ch];
@@ -2960,8 +3024,7 @@ typedef struct hrm__iv {
     hrm_real a, b, V[HRM__NY], E[HRM__NY];
     hrm_real D[HRM__NY]; /* |S2 - S1| or |K - G| */
     int s[4]; /* nested Simpson: its samples at a, a + h/4, a + h/2, a + 3h/4 */
-    hrm_real Sa[HRM__CH], Sb[HRM__CH], Sm[HRM__CH]; /* Gauss-Kronrod: the source */
-    int ha, hb; /* at a and b, where sampled; Sm at the centre node */
+    hrm__gk_io io; /* Gauss-Kronrod: ends, check sample, centre */
     char fell[HRM__NY]; /* nested Simpson: |S2 - S1| fell 8 times at its split */
 } hrm__iv;
 
@@ -2983,7 +3046,7 @@ static void hrm__wf_rule(hrm__ctx *c, hrm__wf *w, hrm__iv *v, int b_sample)
         hrm__ns_five(c, &P[v->s[0]], &P[v->s[1]], &P[v->s[2]], &P[v->s[3]], &P[b_sample], zero,
                      v->V, v->E);
     } else {
-        hrm__gk(c, v->a, v->b, zero, v->V, v->E, v->ha ? v->Sa : 0, v->hb ? v->Sb : 0, v->Sm);
+        hrm__gk(c, v->a, v->b, zero, v->V, v->E, &v->io);
     }
     for (i = 0; i < HRM__NY; ++i) {
         v->D[i] = v->E[i] = HRM_FABS(v->E[i]);
@@ -3057,12 +3120,32 @@ static void hrm__wf_split(hrm__ctx *c, hrm__wf *w, int k)
         hrm__wf_rule(c, w, r, b_sample);
         hrm__ns_trust(c, &par, l, r);
     } else {
-        /* the parent's centre node is the halves' common end */
-        memcpy(l->Sb, par.Sm, sizeof par.Sm);
-        memcpy(r->Sa, par.Sm, sizeof par.Sm);
-        memcpy(r->Sb, par.Sb, sizeof par.Sb);
-        l->hb = r->ha = 1;
-        r->hb = par.hb;
+        /* the parent's centre node is the halves' common end; a check
+           sample the parent left unexplained, else its node of the
+           largest source, checks the half it falls in */
+        hrm__iv *h[2];
+        int e;
+        h[0] = l;
+        h[1] = r;
+        memcpy(l->io.Sb, par.io.Sm, sizeof par.io.Sm);
+        memcpy(r->io.Sa, par.io.Sm, sizeof par.io.Sm);
+        memcpy(r->io.Sb, par.io.Sb, sizeof par.io.Sb);
+        l->io.hb = r->io.ha = 1;
+        r->io.hb = par.io.hb;
+        for (e = 0; e < 2; ++e) {
+            hrm__gk_io *o = &h[e]->io;
+            o->hc = 0;
+            if (par.io.hc && par.io.unexplained &&
+                (par.io.xc - h[e]->a) * (par.io.xc - h[e]->b) < 0) {
+                o->hc = 1;
+                o->xc = par.io.xc;
+                memcpy(o->gqc, par.io.gqc, sizeof o->gqc);
+            } else if ((par.io.xm - h[e]->a) * (par.io.xm - h[e]->b) < 0) {
+                o->hc = 1;
+                o->xc = par.io.xm;
+                memcpy(o->gqc, par.io.gqm, sizeof o->gqc);
+            }
+        }
         hrm__wf_rule(c, w, l, 0);
         hrm__wf_rule(c, w, r, 0);
         /* |K - G| bounds G's error, not K's: K15 is exact to degree 22 and
@@ -3221,10 +3304,11 @@ static void hrm__gk_global(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
     for (i = 0; i < w.n; ++i) {
         iv[i].a = c->pa + span * ((hrm_real)i / (hrm_real)w.n);
         iv[i].b = i + 1 == w.n ? c->pb : c->pa + span * ((hrm_real)(i + 1) / (hrm_real)w.n);
-        iv[i].ha = i == 0;
-        iv[i].hb = i + 1 == w.n && has[1];
-        memcpy(iv[i].Sa, S[0], sizeof S[0]);
-        memcpy(iv[i].Sb, S[1], sizeof S[1]);
+        iv[i].io.ha = i == 0;
+        iv[i].io.hb = i + 1 == w.n && has[1];
+        iv[i].io.hc = 0;
+        memcpy(iv[i].io.Sa, S[0], sizeof S[0]);
+        memcpy(iv[i].io.Sb, S[1], sizeof S[1]);
         hrm__wf_rule(c, &w, &iv[i], 0);
         c->stats.steps++;
     }
@@ -3236,8 +3320,8 @@ static void hrm__gk_global(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
        scale of the total found */
     hrm__finish_scale(c, tot, acc);
     for (i = 0; i < w.n && c->status == HRM_OK; ++i)
-        hrm__gk_local_one(c, iv[i].a, iv[i].b, iv[i].V, iv[i].E, iv[i].ha ? iv[i].Sa : 0,
-                          iv[i].hb ? iv[i].Sb : 0, acc);
+        hrm__gk_local_one(c, iv[i].a, iv[i].b, iv[i].V, iv[i].E, iv[i].io.ha ? iv[i].io.Sa : 0,
+                          iv[i].io.hb ? iv[i].io.Sb : 0, acc);
 }
 
 /* Nested Simpson: worst first from the initial panels while the intervals
