@@ -672,7 +672,7 @@ static double ad_point_ref(const problem *p, int c, double D, double delta)
 {
     double lo = delta - 20 * D > 0 ? delta - 20 * D : 0, hi = delta + 20 * D;
     return gl_exact_f(p, c, 0, 0, lo, (int)ceil(lo / 0.01) + 1) +
-           gl_exact_f(p, c, 0, lo, delta, (int)ceil((delta - lo) / (D / 5))) +
+           (delta > lo ? gl_exact_f(p, c, 0, lo, delta, (int)ceil((delta - lo) / (D / 5))) : 0) +
            gl_exact_f(p, c, 0, delta, hi, 100) +
            gl_exact_f(p, c, 0, hi, 10, (int)ceil((10 - hi) / 0.01));
 }
@@ -683,12 +683,16 @@ static double ad_point_ref(const problem *p, int c, double D, double delta)
       judged by half of it let Gauss-Kronrod (local), Dormand-Prince and
       Fehlberg return L 98-99% low with HRM_OK. The accepted estimates then
       add up to more than the tolerance allows: the solve is repeated at
-      the scale found. Now within 10 rtol, or a warning. (Double only: the
-      peak is 1e-3 wide, float resolves t near 1.3 to 1e-7.)
+      the scale found. A peak on a node of the first G3/K7 that its halves
+      straddle left global Gauss-Kronrod 86% low, and a peak on the ray's
+      start passed the pairs as a jump (Dormand-Prince 71% high): now the
+      halves check that node's sample, and the pairs' rough steps are
+      judged by both estimates. Now within 3 rtol (the issue's bound on
+      HRM_OK runs), or a warning. (Double only: the peak is 1e-3 wide,
+      float resolves t near 1.3 to 1e-7.)
    2. result.error: -1 for the fixed-step methods; for the adaptive ones
-      finite, >= 0, and at least the error of these runs that returned
-      HRM_OK (the estimates are upper bounds here: estimates of a lower
-      order than what is returned).
+      finite, >= 0, and at least a third of the error of these runs (the
+      estimates are calibrated to the order returned, not bounds).
    3. Any budget: 0 <= L <= max(Li) (1 - Tr) (S / sigma_t is a weighted mean
       of Le and Li), whatever the status. */
 /* A thin medium (sigma_a = 0.01, sigma_s = 0.04) lit by a point light 1e-3
@@ -794,6 +798,13 @@ static void ad_verified(void)
         { HRM_GAUSS_KRONROD, HRM_GK_LOCAL, 1.29234, 1e-4 },
         { HRM_DORMAND_PRINCE, HRM_GK_DEFAULT, 1.00475, 1e-3 },
         { HRM_FEHLBERG, HRM_GK_DEFAULT, 1.15933, 1e-3 },
+        /* the peak on a node of the first G3/K7 (5 - 5 sqrt(3/5)) */
+        { HRM_GAUSS_KRONROD, HRM_GK_GLOBAL, 1.1270166537925831, 1e-2 },
+        { HRM_GAUSS_KRONROD, HRM_GK_GLOBAL, 1.1270166537925831, 1e-3 },
+        /* the peak on the ray's start: the first node of every step */
+        { HRM_DORMAND_PRINCE, HRM_GK_DEFAULT, 0, 1e-2 },
+        { HRM_CASH_KARP, HRM_GK_DEFAULT, 0, 1e-2 },
+        { HRM_VERNER, HRM_GK_DEFAULT, 0, 1e-2 },
     };
     static const char *const how[2] = {"constants", "sigma callbacks"};
     scene sc;
@@ -815,11 +826,11 @@ static void ad_verified(void)
             for (c = 0; c < NCH; ++c) {
                 double ref = ad_point_ref(&p, c, sc.D, sc.delta), e = fabs((double)r.L[c] - ref);
                 if (st == HRM_OK)
-                    CHECK_NEAR(e / ref, 0, 10 * cases[i].rtol, "%s, %s, light 1e-3 from the ray at %g, rtol %g: L",
+                    CHECK_NEAR(e / ref, 0, 3 * cases[i].rtol, "%s, %s, light 1e-3 from the ray at %g, rtol %g: L",
                                hrm_method_name(cases[i].m), how[cb], cases[i].delta, cases[i].rtol);
-                CHECK(e <= (double)r.error[c] * 1.01 + 1e-12 * ref,
-                      "%s, %s: the error estimate %.3g bounds the error %.3g", hrm_method_name(cases[i].m),
-                      how[cb], (double)r.error[c], e);
+                CHECK(e <= 3 * (double)r.error[c] + 1e-12 * ref,
+                      "%s, %s, light at %g: the error %.3g within 3x the estimate %.3g", hrm_method_name(cases[i].m),
+                      how[cb], cases[i].delta, e, (double)r.error[c]);
             }
         }
     /* 4. Far from the origin (t0 = 1e8, double: t resolves 1.5e-8), a light
