@@ -31,7 +31,7 @@ static void bench_usage(FILE *out)
             "scene's natural warp, a homogeneous scene's medium both as constants and as\n"
             "sigma callbacks. Tables on stdout, progress on stderr, files in --out.\n"
             "  --scene NAME    run only this scene (repeatable)\n"
-            "  --method NAME   run only this method (repeatable); gauss-kronrod selects both\n"
+            "  --method NAME   run only this method (repeatable); gauss-kronrod selects all three\n"
             "                  of its modes\n"
             "  --warp NAME     run only this warp (repeatable): none, natural (the scene's\n"
             "                  own), distance, equiangular (scenes with a point light)\n"

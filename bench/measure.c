@@ -86,11 +86,13 @@ static const char *const bench_colors[] = {
     "#1f77b4", "#ff7f0e", "#7f7f7f", "#8c564b", "#d62728", "#9467bd", "#2ca02c",
     "#17becf", "#bcbd22", "#e377c2", "#000000", "#8c6d31", "#393b79", "#ad494a", "#637939"};
 
-static void bench_method_add(bench_state *st, hrm_method id, hrm_gk_mode mode, const char *suffix)
+static void bench_method_add(bench_state *st, hrm_method id, hrm_gk_mode mode, hrm_gk_rule rule,
+                             const char *suffix)
 {
     bench_method *b = &st->methods[st->nmethods];
     b->id = id;
     b->gk_mode = mode;
+    b->gk_rule = rule;
     snprintf(b->name, sizeof b->name, "%s%s", hrm_method_name(id), suffix);
     b->kind = BENCH_ADAPTIVE;
     b->order = 0;
@@ -117,10 +119,13 @@ void bench_state_init(bench_state *st)
     memset(st, 0, sizeof *st);
     for (m = 1; m < (int)HRM_METHOD_COUNT; ++m) {
         if (m == (int)HRM_GAUSS_KRONROD) {
-            bench_method_add(st, HRM_GAUSS_KRONROD, HRM_GK_GLOBAL, "-global");
-            bench_method_add(st, HRM_GAUSS_KRONROD, HRM_GK_LOCAL, "-local");
+            /* the default (global, G3/K7), global with G7/K15, and
+               Munoz's local mode (G7/K15) */
+            bench_method_add(st, HRM_GAUSS_KRONROD, HRM_GK_GLOBAL, HRM_GK_RULE_DEFAULT, "-global");
+            bench_method_add(st, HRM_GAUSS_KRONROD, HRM_GK_GLOBAL, HRM_GK_K15, "-k15");
+            bench_method_add(st, HRM_GAUSS_KRONROD, HRM_GK_LOCAL, HRM_GK_RULE_DEFAULT, "-local");
         } else {
-            bench_method_add(st, (hrm_method)m, HRM_GK_DEFAULT, "");
+            bench_method_add(st, (hrm_method)m, HRM_GK_DEFAULT, HRM_GK_RULE_DEFAULT, "");
         }
     }
     st->timings = 5;
@@ -446,6 +451,7 @@ static void bench_case_init(bench_case *bc, const bench_state *st, const bench_s
     bc->label = label;
     bc->options = hrm_default_options(me->id);
     bc->options.gk_mode = me->gk_mode;
+    bc->options.gk_rule = me->gk_rule;
     if (bench_is_swept_over_n(me)) {
         bc->options.steps = (int)param;
     } else {
