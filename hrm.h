@@ -149,10 +149,13 @@
                                                    fit, then left to right;
                                                    4*steps+1 to start (2
                                                    panels by default, <= 32)
-   HRM_GAUSS_KRONROD    12     7 per interval      gk_rule K7 (G3/K7, the
-                        (K7)   + 2                 default of GLOBAL) or K15
-                        22     15 per interval     (G7/K15, the default of
-                        (K15)  + 2                 LOCAL); the ray's two ends
+   HRM_GAUSS_KRONROD    22     15 per interval     gk_rule K15 (G7/K15, the
+                        (K15)  + 2                 default) or K7 (G3/K7:
+                        12     7 per interval      fewer samples across jumps
+                        (K7)   + 2                 and thick layers, more on
+                                                   smooth warped integrands
+                                                   and at tight rtol, see
+                                                   bench/); the ray's two ends
                                                    once (a layer at the
                                                    camera or surface is seen);
                                                    gk_mode GLOBAL (worst
@@ -491,7 +494,7 @@ typedef enum hrm_gk_mode {
 
 /* Gauss-Kronrod pair. */
 typedef enum hrm_gk_rule {
-    HRM_GK_RULE_DEFAULT = 0, /* K7 in HRM_GK_GLOBAL, K15 in HRM_GK_LOCAL */
+    HRM_GK_RULE_DEFAULT = 0, /* HRM_GK_K15 */
     HRM_GK_K15,              /* G7/K15: 15 samples per interval, degree 22 */
     HRM_GK_K7                /* G3/K7: 7 samples per interval, degree 11 */
 } hrm_gk_rule;
@@ -585,7 +588,7 @@ typedef struct hrm_options {
     long max_evals;     /* source evaluation budget. 0: 100000 */
     hrm_control control;/* Runge-Kutta step control. 0: HRM_CONTROL_PI */
     hrm_gk_mode gk_mode;/* Gauss-Kronrod. 0: HRM_GK_GLOBAL */
-    hrm_gk_rule gk_rule;/* Gauss-Kronrod. 0: K7 global, K15 local */
+    hrm_gk_rule gk_rule;/* Gauss-Kronrod. 0: HRM_GK_K15 */
     hrm_warp warp;      /* importance sampling. 0: none */
     hrm_tau_mode tau_mode; /* 0: HRM_TAU_DECOUPLED */
     hrm_real tau_tol;   /* decoupled tau: the error of each optical-depth
@@ -947,13 +950,15 @@ static const hrm_real hrm__k7_tau[7 * 7] = {
 };
 
 /* A Gauss-Kronrod pair: n nodes ascending, Kronrod and Gauss weights,
-   the tau matrix, the Kronrod rule's exact degree. */
+   the tau matrix, the Kronrod rule's exact degree, and a bound below the
+   gap between its nodes and an ancestor's (hrm__gk_resolved). */
 typedef struct hrm__gk_pair {
     int n, degree;
     const hrm_real *x, *wk, *wg, *tau;
+    hrm_real gap; /* below the closest node of an ancestor, per width */
 } hrm__gk_pair;
-static const hrm__gk_pair hrm__k15 = {15, 22, hrm__gk_x, hrm__gk_wk, hrm__gk_wg, hrm__gk_tau};
-static const hrm__gk_pair hrm__k7 = {7, 11, hrm__k7_x, hrm__k7_wk, hrm__k7_wg, hrm__k7_tau};
+static const hrm__gk_pair hrm__k15 = {15, 22, hrm__gk_x, hrm__gk_wk, hrm__gk_wg, hrm__gk_tau, 1e-4};
+static const hrm__gk_pair hrm__k7 = {7, 11, hrm__k7_x, hrm__k7_wk, hrm__k7_wg, hrm__k7_tau, 1e-2};
 
 /* The Chebyshev polynomials at the degree-16 Lobatto points, ascending in t:
    T_k(-cos(j pi / 16)) = (-1)^k cos(j k pi / 16), row k, column j (the
@@ -2762,6 +2767,17 @@ typedef struct hrm__gk_io {
     int ha, hb, hc, unexplained;
 } hrm__gk_io;
 
+/* Whether the halves of [a, b] would place their nodes apart, at t's
+   resolution (without a warp, 2 eps |t0|), from every node of the
+   intervals they descend from, which are not nested: over ten generations
+   of bisection the closest pair is 1.8e-4 of the half's width for K15 and
+   1.4e-2 for K7 (gap, in hrm__gk_pair). Closer, two nodes would round to
+   one t and be evaluated twice. */
+static int hrm__gk_resolved(const hrm__ctx *c, hrm_real a, hrm_real b)
+{
+    return HRM_FABS(b - a) / 2 * c->gk->gap >= c->h_res;
+}
+
 /* The source S at a sample (per unit length: its g divided by ds/dp). */
 static void hrm__source_of(const hrm__pt *pt, int ch, hrm_real *S)
 {
@@ -2944,7 +2960,7 @@ static void hrm__gk_local_one(hrm__ctx *c, hrm_real a0, hrm_real b0, const hrm_r
         for (i = 0; i < HRM__NY; ++i) y1[i] = acc[i] + K[i];
         ratio = hrm__ratio(c, HRM_CONTROL_PI, a, b, acc, y1, ek);
         split = ratio > 1 && !hrm__rough_ok(c, ratio, parent, a, b, acc, y1, ek);
-        if (split && (d >= HRM_MAX_DEPTH || HRM_FABS(b - a) / 2 < c->h_min)) {
+        if (split && (d >= HRM_MAX_DEPTH || HRM_FABS(b - a) / 2 < c->h_min || !hrm__gk_resolved(c, a, b))) {
             if (hrm__ratio(c, HRM__JUMP, a, b, acc, y1, ek) > 1)
                 hrm__warn(c, d >= HRM_MAX_DEPTH ? HRM_WARN_STORAGE : hrm__h_min_status(c));
             split = 0;
@@ -3240,7 +3256,8 @@ static int hrm__worst_first(hrm__ctx *c, hrm__wf *w, hrm_real acc[HRM__NY])
         hrm__iv par;
         if (c->status != HRM_OK) return 0;
         if (hrm__wf_sum(c, w, acc, &k)) return 0;
-        if (HRM_FABS(w->iv[k].b - w->iv[k].a) / (w->pool ? 8 : 2) < c->h_min) {
+        if (HRM_FABS(w->iv[k].b - w->iv[k].a) / (w->pool ? 8 : 2) < c->h_min ||
+            (!w->pool && !hrm__gk_resolved(c, w->iv[k].a, w->iv[k].b))) {
             hrm__warn(c, hrm__h_min_status(c)); /* the worst interval is at h_min */
             return 0;
         }
@@ -3447,8 +3464,7 @@ static hrm_status hrm__resolve(const hrm_options *in, hrm_options *o)
     if ((int)o->gk_mode < 0 || (int)o->gk_mode > (int)HRM_GK_LOCAL) return HRM_ERR_BAD_OPTION;
     if (o->gk_mode == HRM_GK_DEFAULT) o->gk_mode = d.gk_mode;
     if ((int)o->gk_rule < 0 || (int)o->gk_rule > (int)HRM_GK_K7) return HRM_ERR_BAD_OPTION;
-    if (o->gk_rule == HRM_GK_RULE_DEFAULT)
-        o->gk_rule = o->gk_mode == HRM_GK_LOCAL ? HRM_GK_K15 : HRM_GK_K7;
+    if (o->gk_rule == HRM_GK_RULE_DEFAULT) o->gk_rule = HRM_GK_K15;
     if ((int)o->tau_mode < 0 || (int)o->tau_mode > (int)HRM_TAU_COUPLED) return HRM_ERR_BAD_OPTION;
     if (o->tau_mode == HRM_TAU_DEFAULT) o->tau_mode = d.tau_mode;
     if (!(HRM__FINITE(o->rtol) && o->rtol >= 0 && HRM__FINITE(o->atol) && o->atol >= 0 &&

@@ -102,8 +102,8 @@ typedef struct ad_cfg {
 
 static const ad_cfg ad_cfgs[] = {
     { HRM_NESTED_SIMPSON, HRM_GK_DEFAULT, HRM_GK_RULE_DEFAULT, 2, "nested-simpson" },
-    { HRM_GAUSS_KRONROD, HRM_GK_GLOBAL, HRM_GK_RULE_DEFAULT, 7, "gk-global" },
-    { HRM_GAUSS_KRONROD, HRM_GK_GLOBAL, HRM_GK_K15, 15, "gk-global-k15" },
+    { HRM_GAUSS_KRONROD, HRM_GK_GLOBAL, HRM_GK_RULE_DEFAULT, 15, "gk-global" },
+    { HRM_GAUSS_KRONROD, HRM_GK_GLOBAL, HRM_GK_K7, 7, "gk-global-k7" },
     { HRM_GAUSS_KRONROD, HRM_GK_LOCAL, HRM_GK_RULE_DEFAULT, 15, "gk-local" },
     { HRM_BOGACKI_SHAMPINE, HRM_GK_DEFAULT, HRM_GK_RULE_DEFAULT, 3, "bogacki-shampine" },
     { HRM_DORMAND_PRINCE, HRM_GK_DEFAULT, HRM_GK_RULE_DEFAULT, 5, "dormand-prince" },
@@ -794,17 +794,19 @@ static void ad_anytime(void)
 
 static void ad_verified(void)
 {
-    static const struct { hrm_method m; hrm_gk_mode gk; double delta, rtol; } cases[] = {
-        { HRM_GAUSS_KRONROD, HRM_GK_LOCAL, 1.29234, 1e-4 },
-        { HRM_DORMAND_PRINCE, HRM_GK_DEFAULT, 1.00475, 1e-3 },
-        { HRM_FEHLBERG, HRM_GK_DEFAULT, 1.15933, 1e-3 },
-        /* the peak on a node of the first G3/K7 (5 - 5 sqrt(3/5)) */
-        { HRM_GAUSS_KRONROD, HRM_GK_GLOBAL, 1.1270166537925831, 1e-2 },
-        { HRM_GAUSS_KRONROD, HRM_GK_GLOBAL, 1.1270166537925831, 1e-3 },
+    static const struct { hrm_method m; hrm_gk_mode gk; hrm_gk_rule rule; double delta, rtol; } cases[] = {
+        { HRM_GAUSS_KRONROD, HRM_GK_LOCAL, HRM_GK_RULE_DEFAULT, 1.29234, 1e-4 },
+        { HRM_DORMAND_PRINCE, HRM_GK_DEFAULT, HRM_GK_RULE_DEFAULT, 1.00475, 1e-3 },
+        { HRM_FEHLBERG, HRM_GK_DEFAULT, HRM_GK_RULE_DEFAULT, 1.15933, 1e-3 },
+        /* the peak on a node of the first G3/K7 (5 - 5 sqrt(3/5)) and of
+           the first G7/K15 (5 + 5 x_1, x_1 = -0.949107912342758...) */
+        { HRM_GAUSS_KRONROD, HRM_GK_GLOBAL, HRM_GK_K7, 1.1270166537925831, 1e-2 },
+        { HRM_GAUSS_KRONROD, HRM_GK_GLOBAL, HRM_GK_K7, 1.1270166537925831, 1e-3 },
+        { HRM_GAUSS_KRONROD, HRM_GK_GLOBAL, HRM_GK_RULE_DEFAULT, 0.2544604382862074, 1e-2 },
         /* the peak on the ray's start: the first node of every step */
-        { HRM_DORMAND_PRINCE, HRM_GK_DEFAULT, 0, 1e-2 },
-        { HRM_CASH_KARP, HRM_GK_DEFAULT, 0, 1e-2 },
-        { HRM_VERNER, HRM_GK_DEFAULT, 0, 1e-2 },
+        { HRM_DORMAND_PRINCE, HRM_GK_DEFAULT, HRM_GK_RULE_DEFAULT, 0, 1e-2 },
+        { HRM_CASH_KARP, HRM_GK_DEFAULT, HRM_GK_RULE_DEFAULT, 0, 1e-2 },
+        { HRM_VERNER, HRM_GK_DEFAULT, HRM_GK_RULE_DEFAULT, 0, 1e-2 },
     };
     static const char *const how[2] = {"constants", "sigma callbacks"};
     scene sc;
@@ -820,6 +822,7 @@ static void ad_verified(void)
             m = problem_medium(&p);
             o.rtol = (hrm_real)cases[i].rtol;
             if (cases[i].gk) o.gk_mode = cases[i].gk;
+            o.gk_rule = cases[i].rule;
             st = hrm_solve(&m, 0, 10, &o, &r);
             CHECK(st == HRM_OK || st == HRM_WARN_TOLERANCE, "%s, %s, light at %g: status %d",
                   hrm_method_name(cases[i].m), how[cb], cases[i].delta, st);
