@@ -2775,7 +2775,9 @@ typedef struct hrm__gk_io {
    one t and be evaluated twice. */
 static int hrm__gk_resolved(const hrm__ctx *c, hrm_real a, hrm_real b)
 {
-    return HRM_FABS(b - a) / 2 * c->gk->gap >= c->h_res;
+    /* (it matters on a ray farther from the origin than it is long;
+       nearer, h_min stops the bisection long before) */
+    return HRM_FABS(c->t0) <= c->T || HRM_FABS(b - a) / 2 * c->gk->gap >= c->h_res;
 }
 
 /* The source S at a sample (per unit length: its g divided by ds/dp). */
