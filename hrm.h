@@ -3077,17 +3077,19 @@ static void hrm__wf_rule(hrm__ctx *c, hrm__wf *w, hrm__iv *v, int b_sample)
    (16 times in the two halves together). There the parent's miss of the
    halves' sum, |V - (V_l + V_r)|, measures the error of its Richardson-
    corrected value, which falls faster still: its ratio to the parent's
-   |S2 - S1| (at least the fall itself: a miss that cancels by chance is
-   no evidence), where smaller than 1/5, is the halves' factor instead (as
+   |S2 - S1| (at least the square of the fall: a miss that cancels by
+   chance is no evidence), where smaller than 1/5, is the halves' factor
+   instead (as
    for Gauss-Kronrod in hrm__wf_split). The regime counts as reached when
    |S2 - S1| fell 8 times at this split and at the parent's own: until
    then S2 - S1 itself is the estimate, since a boundary layer that a few
    samples cannot resolve (a thick medium) or an oscillation they alias
    leaves the corrected sum as far off as S2 and S1 are apart. (Measured on
    the bench's smooth scenes, rtol 1e-2..1e-10: worst HRM_OK run 0.64
-   rtol, median 0.006; one fall of 8 let smoke through at 5.7 rtol, a fall
-   of 16 once made a budget of 65 samples 100 times worse than a uniform
-   Simpson rule on a smooth light.) */
+   rtol, median 0.009-0.022 (0.006 with the fall itself as the floor); one
+   fall of 8 let smoke through at 5.7 rtol, a fall of 16 once made a budget
+   of 65 samples 100 times worse than a uniform Simpson rule on a smooth
+   light.) */
 static void hrm__ns_trust(const hrm__ctx *c, const hrm__iv *par, hrm__iv *l, hrm__iv *r)
 {
     int j;
@@ -3099,7 +3101,7 @@ static void hrm__ns_trust(const hrm__ctx *c, const hrm__iv *par, hrm__iv *l, hrm
         if (j >= HRM__CH) {
             if (!c->closed) f = HRM_EXP(-l->V[j - HRM__CH]);
             q = HRM_FABS(par->V[j] - l->V[j] - f * r->V[j]) / par->D[j];
-            q = q > rho ? q : rho; /* a miss that cancels by chance is no evidence */
+            q = q > rho * rho ? q : rho * rho; /* a miss that cancels by chance is no evidence */
             q = q < HRM__R(0.2) ? q : HRM__R(0.2);
         }
         l->E[j] *= q;
