@@ -119,10 +119,10 @@ void bench_state_init(bench_state *st)
     memset(st, 0, sizeof *st);
     for (m = 1; m < (int)HRM_METHOD_COUNT; ++m) {
         if (m == (int)HRM_GAUSS_KRONROD) {
-            /* the default (global, G3/K7), global with G7/K15, and
+            /* the default (global, G7/K15), global with G3/K7, and
                Munoz's local mode (G7/K15) */
             bench_method_add(st, HRM_GAUSS_KRONROD, HRM_GK_GLOBAL, HRM_GK_RULE_DEFAULT, "-global");
-            bench_method_add(st, HRM_GAUSS_KRONROD, HRM_GK_GLOBAL, HRM_GK_K15, "-k15");
+            bench_method_add(st, HRM_GAUSS_KRONROD, HRM_GK_GLOBAL, HRM_GK_K7, "-k7");
             bench_method_add(st, HRM_GAUSS_KRONROD, HRM_GK_LOCAL, HRM_GK_RULE_DEFAULT, "-local");
         } else {
             bench_method_add(st, (hrm_method)m, HRM_GK_DEFAULT, HRM_GK_RULE_DEFAULT, "");
