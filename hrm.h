@@ -2889,7 +2889,7 @@ static void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, const hrm_real *tau_a,
                a node's share of the interval. Smooth, it misses by less
                than |K - G| (by h / l of it); a peak that the parent's
                node sat on and these nodes straddle misses by the peak:
-               then that is the error, and the halves check it again. */
+               then K itself is in doubt, and the halves check it again. */
             hrm_real p_at = 0, mis, att;
             int jn = 0;
             for (j = 0; j < N; ++j) {
@@ -2899,7 +2899,12 @@ static void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, const hrm_real *tau_a,
             att = pt[jn].gq[ch] != 0 ? f[jn] / pt[jn].gq[ch] : c->closed ? pt[jn].tr[ch] : 1;
             mis = HRM_FABS(io->gqc[ch] - p_at) * att * 2 * HRM_FABS(hl) / (hrm_real)N;
             if (mis > ek[n]) {
-                ek[n] = mis;
+                /* Missed by more than a thousandth of K, the nodes do not
+                   resolve the integrand there: the whole of K is in doubt
+                   (the miss over a node's share alone let a peak 1e-2
+                   wide near the ray's end pass 20% low). A smaller miss
+                   is the error itself (smooth, at tight rtol). */
+                ek[n] = mis > HRM__R(1e-3) * HRM_FABS(K[n]) ? mis + HRM_FABS(K[n]) : mis;
                 io->unexplained = 1;
             }
         }
@@ -3072,40 +3077,47 @@ static void hrm__wf_rule(hrm__ctx *c, hrm__wf *w, hrm__iv *v, int b_sample)
     }
 }
 
-/* E = |S2 - S1| / 5 estimates S2's error with a factor 3 of margin once
-   the halves are in the asymptotic regime, where S2 - S1 falls like h^5
-   (16 times in the two halves together). There the parent's miss of the
-   halves' sum, |V - (V_l + V_r)|, measures the error of its Richardson-
-   corrected value, which falls faster still: its ratio to the parent's
-   |S2 - S1| (at least the square of the fall: a miss that cancels by
-   chance is no evidence), where smaller than 1/5, is the halves' factor
-   instead (as
-   for Gauss-Kronrod in hrm__wf_split). The regime counts as reached when
-   |S2 - S1| fell 8 times at this split and at the parent's own: until
-   then S2 - S1 itself is the estimate, since a boundary layer that a few
-   samples cannot resolve (a thick medium) or an oscillation they alias
-   leaves the corrected sum as far off as S2 and S1 are apart. (Measured on
-   the bench's smooth scenes, rtol 1e-2..1e-10: worst HRM_OK run 0.64
-   rtol, median 0.009-0.022 (0.006 with the fall itself as the floor); one
-   fall of 8 let smoke through at 5.7 rtol, a fall of 16 once made a budget
-   of 65 samples 100 times worse than a uniform Simpson rule on a smooth
-   light.) */
-static void hrm__ns_trust(const hrm__ctx *c, const hrm__iv *par, hrm__iv *l, hrm__iv *r)
+/* How far a split lets the halves l, r of par trust their estimates:
+   fall is the fall of the raw estimate D that shows the asymptotic regime,
+   cap the factor applied there, square the nested Simpson variant. For
+   nested Simpson, E = |S2 - S1| / 5 estimates S2's error with a factor 3
+   of margin once the halves are in the asymptotic regime, where S2 - S1
+   falls like h^5 (16 times in the two halves together). There the
+   parent's miss of the halves' sum, |V - (V_l + V_r)|, measures the error
+   of its Richardson-corrected value, which falls faster still: its ratio
+   to the parent's |S2 - S1| (at least the square of the fall: a miss that
+   cancels by chance is no evidence), where smaller than 1/5, is the
+   halves' factor instead. The regime counts as reached when D fell (8
+   times) at this split and at the parent's own: until then S2 - S1 itself
+   is the estimate, since a boundary layer that a few samples cannot
+   resolve (a thick medium) or an oscillation they alias leaves the
+   corrected sum as far off as S2 and S1 are apart. (Measured on the
+   bench's smooth scenes, rtol 1e-2..1e-10: worst HRM_OK run 0.64 rtol,
+   median 0.009-0.022 (0.006 with the fall itself as the floor); one fall
+   of 8 let smoke through at 5.7 rtol, a fall of 16 once made a budget of
+   65 samples 100 times worse than a uniform Simpson rule on a smooth
+   light.) Gauss-Kronrod: hrm__wf_split. Never below 16 epsilons of V. */
+static void hrm__wf_trust(const hrm__ctx *c, const hrm__iv *par, hrm__iv *l, hrm__iv *r,
+                          hrm_real fall, hrm_real cap, int square)
 {
     int j;
     for (j = 0; j < HRM__NY; ++j) {
-        hrm_real q = HRM__R(0.2), f = 1, rho = (l->D[j] + r->D[j]) / par->D[j];
-        int fell = rho <= HRM__R(1.0) / 8;
-        l->fell[j] = r->fell[j] = fell;
+        hrm_real q = cap, f = 1, rho = par->D[j] > 0 ? (l->D[j] + r->D[j]) / par->D[j] : 1, lo, fl;
+        int fell = rho <= fall;
+        l->fell[j] = r->fell[j] = (char)fell;
         if (!fell || !par->fell[j]) continue;
-        if (j >= HRM__CH) {
-            if (!c->closed) f = HRM_EXP(-l->V[j - HRM__CH]);
+        if (j >= HRM__CH || !square) {
+            if (j >= HRM__CH && !c->closed) f = HRM_EXP(-l->V[j - HRM__CH]);
             q = HRM_FABS(par->V[j] - l->V[j] - f * r->V[j]) / par->D[j];
-            q = q > rho * rho ? q : rho * rho; /* a miss that cancels by chance is no evidence */
-            q = q < HRM__R(0.2) ? q : HRM__R(0.2);
+            /* (nested Simpson: a miss that cancels by chance is no evidence) */
+            lo = square ? rho * rho : 0;
+            q = q > lo ? q : lo;
+            q = q < cap ? q : cap;
         }
-        l->E[j] *= q;
-        r->E[j] *= q;
+        fl = 16 * HRM__EPS * HRM_FABS(l->V[j]);
+        l->E[j] = l->E[j] * q > fl ? l->E[j] * q : fl;
+        fl = 16 * HRM__EPS * HRM_FABS(r->V[j]);
+        r->E[j] = r->E[j] * q > fl ? r->E[j] * q : fl;
     }
 }
 
@@ -3138,7 +3150,7 @@ static void hrm__wf_split(hrm__ctx *c, hrm__wf *w, int k)
         r->s[3] = q + 3;
         hrm__wf_rule(c, w, l, par.s[2]);
         hrm__wf_rule(c, w, r, b_sample);
-        hrm__ns_trust(c, &par, l, r);
+        hrm__wf_trust(c, &par, l, r, HRM__R(1.0) / 8, HRM__R(0.2), 1);
     } else {
         /* the parent's centre node is the halves' common end; a check
            sample the parent left unexplained, else its node of the
@@ -3170,24 +3182,16 @@ static void hrm__wf_split(hrm__ctx *c, hrm__wf *w, int k)
         hrm__wf_rule(c, w, r, 0);
         /* |K - G| bounds G's error, not K's: K15 is exact to degree 22 and
            G7 to 13 (K7 to 11, G3 to 5), so K's error falls like h^23
-           (h^13) where |K - G| falls like h^15 (h^7). Once a split shows
-           |K - G| falling (4 times at least), the parent's own miss
-           |K - (K_l + K_r)| measures K's error on it, and its ratio to the
-           parent's |K - G|, applied to the halves, overstates theirs by
-           2^8 (2^6) in the asymptotic regime. (A sixteenth of it let the
-           worst HRM_OK run on the bench's smooth scenes reach 13 rtol with
-           K15: the regime is not reached that early.) */
-        for (j = 0; j < HRM__NY; ++j) {
-            hrm_real f = 1, q, fl;
-            if (!(l->D[j] + r->D[j] <= par.D[j] / 4) || par.D[j] <= 0) continue;
-            if (j >= HRM__CH && !c->closed) f = HRM_EXP(-l->V[j - HRM__CH]);
-            q = HRM_FABS(par.V[j] - l->V[j] - f * r->V[j]) / par.D[j];
-            if (q >= 1) continue;
-            fl = 16 * HRM__EPS * HRM_FABS(l->V[j]);
-            l->E[j] = l->D[j] * q > fl ? l->D[j] * q : fl;
-            fl = 16 * HRM__EPS * HRM_FABS(r->V[j]);
-            r->E[j] = r->D[j] * q > fl ? r->D[j] * q : fl;
-        }
+           (h^13) where |K - G| falls like h^15 (h^7). Once splits show
+           |K - G| falling (4 times at least, twice in a row), the parent's
+           own miss |K - (K_l + K_r)| measures K's error on it, and its
+           ratio to the parent's |K - G|, applied to the halves, overstates
+           theirs by 2^8 (2^6) in the asymptotic regime. (A sixteenth of it
+           let the worst HRM_OK run on the bench's smooth scenes reach 13
+           rtol with K15; one fall alone let a light's peak 1e-2 wide pass
+           at 75 rtol; the fall as a floor under the ratio cost 4-17 times
+           the samples at rtol 1e-8..1e-10.) */
+        hrm__wf_trust(c, &par, l, r, HRM__R(0.25), 1, 0);
     }
 }
 
