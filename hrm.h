@@ -1040,8 +1040,9 @@ typedef struct hrm__ctx {
        of calling the callbacks again. */
     int use_memo, nmemo, memo_next, have_end;
     hrm_real err_acc[HRM__CH]; /* adaptive: the accepted error estimates */
-    hrm_real src_max[HRM__CH]; /* the largest Le or Li sampled: S / sigma_t
-                                  is at most that (a weighted mean of them) */
+    hrm_real src_max[HRM__CH]; /* the largest S / sigma_t sampled (the larger
+                                  of Le and Li where sigma_t is not known,
+                                  S / sigma_t being their weighted mean) */
     int scale_fixed;           /* the scale is the solution's, not a pilot's */
     hrm_real h_res;            /* the smallest step t resolves (no warp) */
     int noise_only;            /* the last step or interval judged passed on
@@ -1852,8 +1853,8 @@ static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
 {
     const hrm_medium *m = c->m;
     hrm_real sa[HRM__CH], ss[HRM__CH], st[HRM__CH], v[HRM__CH], q[HRM__CH];
-    hrm_real J, s;
-    int i, em = 0, sc = 0;
+    hrm_real J, s, sig[HRM__CH], vmax[HRM__CH];
+    int i, em = 0, sc = 0, sig_known;
 
     hrm__map(c, p, &pt->off, &J);
     pt->p = p;
@@ -1905,6 +1906,12 @@ static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
         }
         c->stats.medium_evals += medium;
     }
+    /* sigma_t here, where known, for the bound on S / sigma_t */
+    sig_known = c->homog || c->need_st || !m->sigma_t;
+    for (i = 0; i < HRM__CH; ++i) {
+        sig[i] = c->homog ? c->st[i] : c->need_st ? st[i] : sa[i] + ss[i];
+        vmax[i] = 0;
+    }
     if (c->coupled) {
         /* Coupled tau: the rules integrate sigma_t - sbar in the warped
            variable and sbar over the distance in t exactly, so a constant
@@ -1930,7 +1937,7 @@ static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
         hrm__check(c, v, 0);
         for (i = 0; i < HRM__CH; ++i) {
             q[i] += (c->per_length ? v[i] : sa[i] * v[i]);
-            if (v[i] > c->src_max[i]) c->src_max[i] = v[i];
+            vmax[i] = v[i];
         }
     }
     if (sc) {
@@ -1938,8 +1945,14 @@ static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
         hrm__check(c, v, 0);
         for (i = 0; i < HRM__CH; ++i) {
             q[i] += ss[i] * v[i];
-            if (v[i] > c->src_max[i]) c->src_max[i] = v[i];
+            if (v[i] > vmax[i]) vmax[i] = v[i];
         }
+    }
+    for (i = 0; i < HRM__CH; ++i) {
+        /* S / sigma_t, the weighted mean of Le and Li by sigma_a and
+           sigma_s; where sigma_t is not known here, the larger of the two */
+        hrm_real b = sig_known && sig[i] > 0 ? q[i] / sig[i] : vmax[i];
+        if (b > c->src_max[i]) c->src_max[i] = b;
     }
     c->stats.evals += em | sc;
     for (i = 0; i < HRM__CH; ++i) {
@@ -3696,9 +3709,9 @@ static hrm_status hrm__finish(hrm__ctx *c, const hrm_options *o, const hrm_real 
     for (i = 0; i < HRM__CH; ++i) err[i] = adaptive ? c->err_acc[i] : -1;
     if (adaptive && !c->rte && !c->per_length) {
         /* physically bounded whatever a budget cut short: 0 <= L <= the
-           largest S / sigma_t (at most the largest Le or Li sampled, S /
-           sigma_t being their weighted mean) times 1 - Tr; what is cut off
-           counts in the estimate */
+           largest S / sigma_t sampled (the larger of Le and Li where sigma_t
+           is not known at a sample, S / sigma_t being their weighted mean)
+           times 1 - Tr; what is cut off counts in the estimate */
         for (i = 0; i < HRM__CH; ++i) {
             hrm_real top = c->src_max[i] * absorbed[i] * (1 + 16 * HRM__EPS);
             if (L[i] > top) {
