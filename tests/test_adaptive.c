@@ -916,7 +916,12 @@ static void ad_verified(void)
                     continue;
                 }
                 for (c = 0; c < NCH; ++c) {
-                    double top = sc.E[c] * (1 - (double)r.Tr[c]);
+                    /* max(Li)(1 - Tr); with constants sigma_t is known at
+                       every sample and the bound is S / sigma_t = albedo Li
+                       (with sigma_s callbacks and no Le, sigma_a is never
+                       called: max(Li) is what is known) */
+                    double albedo = cb ? 1 : sc.sig_s[c] / (sc.sig_a[c] + sc.sig_s[c]);
+                    double top = albedo * sc.E[c] * (1 - (double)r.Tr[c]);
                     if (!is_adaptive(meth)) {
                         CHECK((double)r.error[c] == -1, "%s: no error estimate: -1", hrm_method_name(meth));
                         continue;
@@ -924,7 +929,7 @@ static void ad_verified(void)
                     CHECK(finite_d((double)r.error[c]) && r.error[c] >= 0,
                           "%s, %s, budget %ld: error estimate finite, >= 0", hrm_method_name(meth), how[cb], budget);
                     CHECK(r.L[c] >= 0 && (double)r.L[c] <= top * (1 + 64 * real_eps()),
-                          "%s, %s, budget %ld, status %d: 0 <= L %.6g <= max(Li)(1 - Tr) %.6g",
+                          "%s, %s, budget %ld, status %d: 0 <= L %.6g <= max(S / sigma_t)(1 - Tr) %.6g",
                           hrm_method_name(meth), how[cb], budget, st, (double)r.L[c], top);
                 }
             }
