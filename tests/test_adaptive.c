@@ -834,6 +834,11 @@ static void ad_verified(void)
                 CHECK(e <= 3 * (double)r.error[c] + 1e-12 * ref,
                       "%s, %s, light at %g: the error %.3g within 3x the estimate %.3g", hrm_method_name(cases[i].m),
                       how[cb], cases[i].delta, e, (double)r.error[c]);
+                if (cb == 0 && c == 0)
+                    NOTE("%s%s, light 1e-3 from the ray at %g, rtol %g: status %d, error/rtol %.2g, %ld evaluations",
+                         hrm_method_name(cases[i].m), cases[i].gk == HRM_GK_LOCAL ? " (local)"
+                         : cases[i].rule == HRM_GK_K7 ? " (G3/K7)" : "", cases[i].delta, cases[i].rtol, st,
+                         e / ref / cases[i].rtol, r.stats.evals);
             }
         }
     /* 4. Far from the origin (t0 = 1e8, double: t resolves 1.5e-8), a light
