@@ -15,6 +15,7 @@
      test_warp.c      the importance-sampling warps
      test_transmittance.c  the transmittance layer: tau in t under every
                       warp, decoupled sampling, the distance warp's reach
+     test_breaks.c    breakpoints: bad lists, pieces, order regained
      common.c         the helpers below
 
    References are always computed in double, whatever HRM_REAL is. Nothing
@@ -46,6 +47,7 @@ void table_tests(void);
 void adaptive_tests(void);
 void warp_tests(void);
 void transmittance_tests(void);
+void breaks_tests(void);
 
 /* ------------------------------------------------------------------------
    Precision and small numerics

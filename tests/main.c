@@ -14,5 +14,6 @@ int main(void)
     adaptive_tests();
     warp_tests();
     transmittance_tests();
+    breaks_tests();
     return harness_summary();
 }
