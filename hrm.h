@@ -689,6 +689,26 @@ HRM_API hrm_status hrm_transmittance(const hrm_medium *medium, hrm_real t0,
 HRM_API hrm_status hrm_equiangular_warp(const hrm_real origin[3], const hrm_real dir[3],
                                         const hrm_real light[3], hrm_warp *warp);
 
+/* Breakpoints of one spherical occluder (center, radius) in front of a
+   point light, along the ray origin + t * dir, t in (t0, t1): the
+   abscissae where the shadow ray from the ray to the light grazes the
+   sphere (the ray meets the cone from the light tangent to the sphere,
+   beyond the circle where the cone touches it), ascending, into out[0..1];
+   *count receives how many (0, 1 or 2). Where the ray passes through the
+   sphere, its entry and exit are the host's (the camera ray usually ends
+   there). Precision: the two roots of a quadratic taken in their stable
+   form, within a few ulps of max(|t|, |t0|) except where the ray grazes
+   the cone itself (a double root), where they are good to about the
+   square root of epsilon relative - there the shadow's extent along the
+   ray is itself that small. Returns HRM_ERR_NULL_ARGUMENT, HRM_ERR_BAD_WARP
+   (dir zero, radius negative, a value not finite, or t1 < t0; *count 0)
+   or HRM_OK; a light inside the sphere, which shadows the whole ray, gives
+   no breakpoint. */
+HRM_API hrm_status hrm_sphere_breaks(const hrm_real origin[3], const hrm_real dir[3],
+                                     const hrm_real light[3], const hrm_real center[3],
+                                     hrm_real radius, hrm_real t0, hrm_real t1,
+                                     hrm_real out[2], int *count);
+
 HRM_API const char *hrm_method_name(hrm_method method); /* "?" if unknown */
 HRM_API const char *hrm_status_string(hrm_status status); /* "unknown status" */
 /* HRM_VERSION_MAJOR*10000 + MINOR*100 + PATCH of the compiled library. */
@@ -1918,6 +1938,73 @@ HRM__DEF hrm_status hrm_equiangular_warp(const hrm_real origin[3], const hrm_rea
     if (!(HRM__FINITE(warp->delta) && HRM__FINITE(warp->D))) {
         memset(warp, 0, sizeof *warp);
         return HRM_ERR_BAD_WARP;
+    }
+    return HRM_OK;
+}
+
+HRM__DEF hrm_status hrm_sphere_breaks(const hrm_real origin[3], const hrm_real dir[3],
+                                      const hrm_real light[3], const hrm_real center[3],
+                                      hrm_real radius, hrm_real t0, hrm_real t1,
+                                      hrm_real out[2], int *count)
+{
+    /* In double whatever hrm_real is: v(t) = w + t d from the light, u the
+       unit vector to the center, cos^2 of the cone's half-angle k =
+       1 - R^2 / |c - L|^2: (v.u)^2 - k (v.v) = 0, with v.u at least
+       |c - L| k (beyond the circle of tangency). */
+    double w[3], d[3], u[3], dist = 0, k, A, B, C, disc, q, r[2], wu = 0, du = 0, wd = 0, ww = 0, dd = 0;
+    int i, n = 0, j;
+    if (!origin || !dir || !light || !center || !out || !count) return HRM_ERR_NULL_ARGUMENT;
+    *count = 0;
+    for (i = 0; i < 3; ++i) {
+        w[i] = (double)origin[i] - (double)light[i];
+        d[i] = (double)dir[i];
+        u[i] = (double)center[i] - (double)light[i];
+        dist += u[i] * u[i];
+        dd += d[i] * d[i];
+    }
+    dist = sqrt(dist);
+    if (!(HRM__FINITE(dist) && HRM__FINITE(dd) && dd > 0 && HRM__FINITE(radius) && radius >= 0 &&
+          HRM__FINITE(t0) && t1 >= t0 && HRM__FINITE(w[0] + w[1] + w[2])))
+        return HRM_ERR_BAD_WARP;
+    if (!(dist > (double)radius) || radius == 0) return HRM_OK; /* light inside, or no sphere */
+    for (i = 0; i < 3; ++i) {
+        u[i] /= dist;
+        wu += w[i] * u[i];
+        du += d[i] * u[i];
+        wd += w[i] * d[i];
+        ww += w[i] * w[i];
+    }
+    k = 1 - ((double)radius / dist) * ((double)radius / dist);
+    A = du * du - k * dd;
+    B = 2 * (wu * du - k * wd);
+    C = wu * wu - k * ww;
+    if (A == 0) {
+        if (B == 0) return HRM_OK;
+        r[0] = -C / B;
+        r[1] = r[0];
+        n = 1;
+    } else {
+        disc = B * B - 4 * A * C;
+        if (disc < 0) return HRM_OK;
+        q = -(B + (B < 0 ? -sqrt(disc) : sqrt(disc))) / 2;
+        r[0] = q / A;
+        r[1] = q != 0 ? C / q : r[0];
+        n = 2;
+    }
+    for (j = 0; j < n; ++j) {
+        double t = r[j];
+        if (!(t > (double)t0 && t < (double)t1)) continue;
+        if (!(wu + t * du >= dist * k)) continue; /* the cone's other nappe, or before the sphere */
+        out[*count] = (hrm_real)t;
+        ++*count;
+    }
+    if (*count == 2) {
+        if (out[0] > out[1]) {
+            hrm_real s = out[0];
+            out[0] = out[1];
+            out[1] = s;
+        }
+        if (out[0] == out[1]) *count = 1;
     }
     return HRM_OK;
 }

@@ -349,6 +349,128 @@ static void br_monte_carlo(void)
          sqrt(rms_plain / n));
 }
 
+/* The shadow predicate: the segment from x to the light meets the sphere. */
+static int br_shadowed(const double x[3], const double L[3], const double c[3], double R)
+{
+    double d[3], m[3], a = 0, b = 0, cc = 0, s;
+    int i;
+    for (i = 0; i < 3; ++i) {
+        d[i] = L[i] - x[i];
+        m[i] = x[i] - c[i];
+        a += d[i] * d[i];
+        b += m[i] * d[i];
+        cc += m[i] * m[i];
+    }
+    cc -= R * R;
+    if (cc <= 0) return 1;
+    s = -b / a; /* the closest point of the segment to the center */
+    s = s < 0 ? 0 : s > 1 ? 1 : s;
+    return cc + 2 * b * s + a * s * s < 0;
+}
+
+/* 7. hrm_sphere_breaks against the shadow predicate: for 200 random
+   configurations whose ray misses the sphere, the predicate's changes
+   along the ray, located by bisection to 1e-12 of the ray, match the
+   helper's breakpoints in number and within 1e-9 of the ray's length
+   (double; 1e-4 under float, whose inputs are rounded). Bad input gives
+   its status and no breakpoint. */
+static void br_sphere(void)
+{
+    uint64_t rng = 12345;
+    int trial, tested = 0, bad = 0;
+    double tol = real_is_float() ? 1e-4 : 1e-9;
+    for (trial = 0; trial < 400 && tested < 200; ++trial) {
+        double o[3], d[3], L[3], c[3], R, t0 = 0, t1 = 10, found[4], pt[3], dd = 0, mc = 0, md = 0;
+        hrm_real ro[3], rd[3], rl[3], rc[3], out[2];
+        int i, n = 0, cnt, steps = 4000, prev, k;
+        for (i = 0; i < 3; ++i) {
+            rng = rng * 6364136223846793005ULL + 1442695040888963407ULL;
+            o[i] = (double)(rng >> 11) / 9007199254740992.0 * 4 - 2;
+            rng = rng * 6364136223846793005ULL + 1442695040888963407ULL;
+            d[i] = (double)(rng >> 11) / 9007199254740992.0 * 2 - 1;
+            rng = rng * 6364136223846793005ULL + 1442695040888963407ULL;
+            L[i] = (double)(rng >> 11) / 9007199254740992.0 * 8 - 4;
+            rng = rng * 6364136223846793005ULL + 1442695040888963407ULL;
+            c[i] = (double)(rng >> 11) / 9007199254740992.0 * 6 - 3;
+            dd += d[i] * d[i];
+        }
+        R = 0.3 + (double)(rng >> 40) / 16777216.0;
+        /* skip rays through the sphere, and lights inside it */
+        for (i = 0; i < 3; ++i) {
+            mc += (o[i] - c[i]) * d[i];
+            md += (L[i] - c[i]) * (L[i] - c[i]);
+        }
+        {
+            double tc = -mc / dd, dist2 = 0;
+            tc = tc < t0 ? t0 : tc > t1 ? t1 : tc;
+            for (i = 0; i < 3; ++i) dist2 += (o[i] + tc * d[i] - c[i]) * (o[i] + tc * d[i] - c[i]);
+            if (dist2 <= R * R * 1.01 || md <= R * R) continue;
+        }
+        for (i = 0; i < 3; ++i) {
+            ro[i] = (hrm_real)o[i];
+            rd[i] = (hrm_real)d[i];
+            rl[i] = (hrm_real)L[i];
+            rc[i] = (hrm_real)c[i];
+            o[i] = (double)ro[i];
+            d[i] = (double)rd[i];
+            L[i] = (double)rl[i];
+            c[i] = (double)rc[i];
+        }
+        R = (double)(hrm_real)R;
+        /* the predicate's changes, bracketed then bisected */
+        for (i = 0; i < 3; ++i) pt[i] = o[i] + t0 * d[i];
+        prev = br_shadowed(pt, L, c, R);
+        for (k = 1; k <= steps && n < 4; ++k) {
+            double ta = t0 + (t1 - t0) * (k - 1) / steps, tb = t0 + (t1 - t0) * k / steps;
+            int now;
+            for (i = 0; i < 3; ++i) pt[i] = o[i] + tb * d[i];
+            now = br_shadowed(pt, L, c, R);
+            if (now != prev) {
+                int it;
+                for (it = 0; it < 60; ++it) {
+                    double tm = (ta + tb) / 2;
+                    for (i = 0; i < 3; ++i) pt[i] = o[i] + tm * d[i];
+                    if (br_shadowed(pt, L, c, R) == prev) ta = tm;
+                    else tb = tm;
+                }
+                found[n++] = (ta + tb) / 2;
+            }
+            prev = now;
+        }
+        CHECK_INT(hrm_sphere_breaks(ro, rd, rl, rc, (hrm_real)R, (hrm_real)t0, (hrm_real)t1, out, &cnt), HRM_OK,
+                  "sphere %d: status", trial);
+        tested++;
+        if (cnt != n) {
+            bad++;
+            continue;
+        }
+        for (k = 0; k < n; ++k)
+            bad += !(fabs((double)out[k] - found[k]) <= tol * (t1 - t0));
+    }
+    CHECK(tested >= 100, "sphere: %d configurations tested", tested);
+    CHECK_INT(bad, 0, "sphere: breakpoints that miss the predicate's changes (of %d configurations)", tested);
+    {
+        hrm_real o[3] = {0, 0, 0}, d[3] = {1, 0, 0}, L[3] = {5, 3, 0}, c[3] = {5, 1.5, 0}, out[2];
+        int cnt = 7;
+        CHECK_INT(hrm_sphere_breaks(NULL, d, L, c, 1, 0, 10, out, &cnt), HRM_ERR_NULL_ARGUMENT, "NULL origin");
+        CHECK_INT(hrm_sphere_breaks(o, d, L, c, -1, 0, 10, out, &cnt), HRM_ERR_BAD_WARP, "negative radius");
+        CHECK_INT(cnt, 0, "bad input: no breakpoint");
+        d[0] = 0;
+        CHECK_INT(hrm_sphere_breaks(o, d, L, c, 1, 0, 10, out, &cnt), HRM_ERR_BAD_WARP, "zero direction");
+        d[0] = 1;
+        c[1] = 3;
+        CHECK_INT(hrm_sphere_breaks(o, d, L, c, 1, 0, 10, out, &cnt), HRM_OK, "light inside the sphere");
+        CHECK_INT(cnt, 0, "light inside the sphere: no breakpoint");
+        c[1] = 1.5;
+        /* light 3 above x = 5, sphere of radius 1 halfway: the shadow is
+           the segment where the shadow ray's angle is within asin(1/1.5) */
+        CHECK_INT(hrm_sphere_breaks(o, d, L, c, 1, 0, 10, out, &cnt), HRM_OK, "symmetric: status");
+        CHECK(cnt == 2 && fabs((double)out[0] + (double)out[1] - 10) < 1e-5,
+              "symmetric shadow: two breakpoints about x = 5 (%d: %g, %g)", cnt, (double)out[0],
+              (double)out[1]);
+    }
+}
+
 void breaks_tests(void)
 {
     RUN_GROUP(br_bad_lists);
@@ -357,4 +479,5 @@ void breaks_tests(void)
     RUN_GROUP(br_tau);
     RUN_GROUP(br_adaptive);
     RUN_GROUP(br_monte_carlo);
+    RUN_GROUP(br_sphere);
 }
