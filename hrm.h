@@ -1200,9 +1200,10 @@ static hrm_real hrm__abscissa(const hrm__ctx *c, hrm_real off)
     return s < c->t1 ? s : c->t1; /* t0 + (t1 - t0) may round past t1 */
 }
 
-/* A sample at or past a breakpoint that ends the current piece is taken
-   8 ulps inside it: each side of a jump is sampled on its own side (a
-   breakpoint a few ulps off the true edge still lands on the right one). */
+/* A sample within 8 ulps of a breakpoint that ends the current piece (or
+   past it) is taken 8 ulps inside: each side of a jump is sampled on its
+   own side, even where the warp puts the piece's end node an ulp or two
+   off the breakpoint, or the breakpoint is a few ulps off the true edge. */
 static hrm_real hrm__inside(hrm_real s, int dir)
 {
     hrm_real tiny = HRM__IS_FLOAT ? HRM__R(FLT_MIN) : HRM__R(DBL_MIN);
@@ -1212,11 +1213,11 @@ static hrm_real hrm__inside(hrm_real s, int dir)
 static hrm_real hrm__side(const hrm__ctx *c, hrm_real s)
 {
     hrm_real lo, hi;
-    if (s > c->s_lo && s < c->s_hi) return s;
-    lo = hrm__inside(c->s_lo, 1);
-    hi = hrm__inside(c->s_hi, -1);
+    if (c->s_lo == -HRM__R(HUGE_VAL) && c->s_hi == HRM__R(HUGE_VAL)) return s;
+    lo = c->s_lo == -HRM__R(HUGE_VAL) ? c->s_lo : hrm__inside(c->s_lo, 1);
+    hi = c->s_hi == HRM__R(HUGE_VAL) ? c->s_hi : hrm__inside(c->s_hi, -1);
     if (lo > hi) return c->s_lo / 2 + c->s_hi / 2; /* a piece of a few ulps */
-    return s <= c->s_lo ? lo : hi;
+    return s < lo ? lo : s > hi ? hi : s;
 }
 
 /* Whether an offset is one of the breakpoints'. */

@@ -164,6 +164,24 @@ typedef struct bench_trans {
     bench_trans_row rows[BENCH_MAX_METHODS * BENCH_SECTION_PARAMS];
 } bench_trans;
 
+/* Breakpoints on the occluder scene: per method, warp and medium, the
+   fewest evaluations from which the sweep stays within 1e-2, 1e-4, 1e-6,
+   without [0] and with [1] the shadow's edges from hrm_sphere_breaks
+   (-1: not reached). */
+#define BENCH_BRK_ROWS (BENCH_MAX_METHODS * 4)
+typedef struct bench_brk_row {
+    int method, warp, medium;
+    long fewest[2][3];
+} bench_brk_row;
+
+typedef struct bench_brk {
+    int scene;                         /* -1: not measured */
+    int nbreaks;
+    double breaks[2];
+    int n;
+    bench_brk_row rows[BENCH_BRK_ROWS];
+} bench_brk;
+
 /* Library overhead against a hand-written loop, at two Li costs:
    [0] the scene's cheap callbacks, [1] Li made about BENCH_BUSY_NS dearer. */
 typedef struct bench_overhead_row {
@@ -213,6 +231,7 @@ typedef struct bench_state {
 
     bench_equi equi;
     bench_trans trans;
+    bench_brk brk;
     bench_overhead overhead[2]; /* directional (constants), hetero (callbacks) */
 } bench_state;
 
@@ -254,6 +273,7 @@ void bench_run_scene(bench_state *st, int si);
 /* The summary sections' measurements, after the sweeps. */
 void bench_measure_equiangular(bench_state *st);
 void bench_measure_transmittance(bench_state *st);
+void bench_measure_breaks(bench_state *st);
 void bench_measure_overhead(bench_state *st); /* only when timed */
 
 /* ------------------------------------------------------------------------ */

@@ -636,14 +636,17 @@ void bench_run_scene(bench_state *st, int si)
 /* ------------------------------------------------------------------------ */
 
 /* One untimed solve of a section: its error (NaN on an error status). */
-static double bench_section_solve(bench_state *st, int si, const bench_method *me,
-                                  bench_warp_id warp, double param, const hrm_medium *m,
-                                  bench_calls *calls, hrm_tau_mode tau_mode, const char *label,
-                                  bench_row *row)
+static double bench_section_solve_breaks(bench_state *st, int si, const bench_method *me,
+                                         bench_warp_id warp, double param, const hrm_medium *m,
+                                         bench_calls *calls, hrm_tau_mode tau_mode,
+                                         const char *label, const hrm_real *breaks, int nbreaks,
+                                         bench_row *row)
 {
     bench_case bc;
     bench_case_init(&bc, st, &bench_scenes[si], me, warp, param, m, calls, label);
     bc.options.tau_mode = tau_mode;
+    bc.options.breaks = breaks;
+    bc.options.nbreaks = nbreaks;
     memset(row, 0, sizeof *row);
     row->scene = si;
     row->warp = warp;
@@ -651,6 +654,15 @@ static double bench_section_solve(bench_state *st, int si, const bench_method *m
     bench_run_case(st, bench_reference_get(st, si), me, &bc, 0, row);
     if (row->status < 0) st->errors++;
     return row->status < 0 ? (double)NAN : row->rel_error;
+}
+
+static double bench_section_solve(bench_state *st, int si, const bench_method *me,
+                                  bench_warp_id warp, double param, const hrm_medium *m,
+                                  bench_calls *calls, hrm_tau_mode tau_mode, const char *label,
+                                  bench_row *row)
+{
+    return bench_section_solve_breaks(st, si, me, warp, param, m, calls, tau_mode, label, NULL, 0,
+                                      row);
 }
 
 void bench_measure_equiangular(bench_state *st)
@@ -733,6 +745,70 @@ void bench_measure_transmittance(bench_state *st)
                 if (col == 2) r->stats_c = row.stats;
             }
         }
+    }
+}
+
+/* ------------------------------------------------------------------------ */
+/* Breakpoints on the occluder scene                                        */
+/* ------------------------------------------------------------------------ */
+
+/* The fewest evaluations from which a sweep (loose to tight) stays within
+   each target; -1 where it never does. */
+static void bench_brk_fewest(const long *evals, const double *err, int n, long out[3])
+{
+    static const double targets[3] = {1e-2, 1e-4, 1e-6};
+    int t, k, j;
+    for (t = 0; t < 3; ++t) {
+        out[t] = -1;
+        for (k = 0; k < n && out[t] < 0; ++k) {
+            int ok = 1;
+            for (j = k; j < n; ++j) ok &= bench_finite(err[j]) && err[j] <= targets[t];
+            if (ok) out[t] = evals[k];
+        }
+    }
+}
+
+void bench_measure_breaks(bench_state *st)
+{
+    bench_brk *b = &st->brk;
+    int si = bench_find_scene("occluder"), mi, w, j, with, k;
+    hrm_real br[2];
+    static const bench_warp_id warps[2] = {BENCH_WARP_NONE, BENCH_WARP_EQUIANGULAR};
+    b->scene = -1;
+    b->n = 0;
+    if (si < 0 || !bench_scene_selected(&st->cfg, si)) return;
+    b->scene = si;
+    b->nbreaks = bench_scene_breaks(&bench_scenes[si], br);
+    for (k = 0; k < b->nbreaks; ++k) b->breaks[k] = (double)br[k];
+    for (mi = 0; mi < st->nmethods; ++mi) {
+        const bench_method *me = &st->methods[mi];
+        const double *params;
+        int np;
+        if (!bench_method_in_sections(st, mi) || me->kind == BENCH_RANDOM) continue;
+        np = bench_params_of(&st->cfg, me, &params);
+        for (w = 0; w < 2; ++w)
+            for (j = 0; j < BENCH_MEDIUM_COUNT && b->n < BENCH_BRK_ROWS; ++j) {
+                bench_brk_row *r = &b->rows[b->n++];
+                hrm_medium m;
+                bench_calls calls;
+                r->method = mi;
+                r->warp = warps[w];
+                r->medium = j;
+                bench_medium_build(&bench_scenes[si], (bench_medium_id)j, &m, &calls);
+                for (with = 0; with < 2; ++with) {
+                    long ev[BENCH_MAX_PARAMS];
+                    double er[BENCH_MAX_PARAMS];
+                    for (k = 0; k < np; ++k) {
+                        bench_row row;
+                        er[k] = bench_section_solve_breaks(st, si, me, warps[w], params[k], &m, &calls,
+                                                           HRM_TAU_DEFAULT, bench_medium_names[j],
+                                                           with ? br : NULL, with ? b->nbreaks : 0,
+                                                           &row);
+                        ev[k] = row.stats.evals;
+                    }
+                    bench_brk_fewest(ev, er, np, r->fewest[with]);
+                }
+            }
     }
 }
 

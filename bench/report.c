@@ -637,6 +637,49 @@ static void bench_report_equiangular(const bench_state *st, const bench_out *o)
     bench_table_emit(&t, o);
 }
 
+static void bench_report_breaks(const bench_state *st, const bench_out *o)
+{
+    const bench_brk *b = &st->brk;
+    bench_table t;
+    int i, w;
+    if (b->scene < 0) return;
+    bench_section(o, "Breakpoints: the occluder's shadow edges given to hrm");
+    bench_both(o,
+               "The fewest evaluations from which a sweep stays within a relative error of 1e-2 / "
+               "1e-4 / 1e-6 (- : not reached in the sweep), without and with options.breaks set "
+               "to the %d shadow edges that hrm_sphere_breaks gives for the scene's ray (%.9g, "
+               "%.9g). Fixed-step methods over N, adaptive ones over rtol.\n\n",
+               b->nbreaks, b->nbreaks > 0 ? b->breaks[0] : (double)NAN,
+               b->nbreaks > 1 ? b->breaks[1] : (double)NAN);
+    bench_table_init(&t, 5);
+    bench_table_row(&t);
+    bench_table_cell(&t, 0, "method");
+    bench_table_cell(&t, 1, "warp");
+    bench_table_cell(&t, 2, "medium");
+    bench_table_cell(&t, 3, "without breakpoints");
+    bench_table_cell(&t, 4, "with breakpoints");
+    for (i = 0; i < b->n; ++i) {
+        const bench_brk_row *r = &b->rows[i];
+        char cell[2][80];
+        for (w = 0; w < 2; ++w) {
+            char part[3][24];
+            int k;
+            for (k = 0; k < 3; ++k) {
+                if (r->fewest[w][k] < 0) snprintf(part[k], sizeof part[k], "-");
+                else snprintf(part[k], sizeof part[k], "%ld", r->fewest[w][k]);
+            }
+            snprintf(cell[w], sizeof cell[w], "%s / %s / %s", part[0], part[1], part[2]);
+        }
+        bench_table_row(&t);
+        bench_table_cell(&t, 0, "%s", st->methods[r->method].name);
+        bench_table_cell(&t, 1, "%s", bench_warp_names[r->warp]);
+        bench_table_cell(&t, 2, "%s", bench_medium_names[r->medium]);
+        bench_table_cell(&t, 3, "%s", cell[0]);
+        bench_table_cell(&t, 4, "%s", cell[1]);
+    }
+    bench_table_emit(&t, o);
+}
+
 static void bench_report_transmittance(const bench_state *st, const bench_out *o)
 {
     static const char *const heads[BENCH_TRANS_COLS] = {
@@ -955,6 +998,7 @@ void bench_report_summaries(const bench_state *st, const bench_out *summary,
     bench_report_proportionality(st, summary);
     bench_report_equiangular(st, summary);
     bench_report_transmittance(st, summary);
+    bench_report_breaks(st, summary);
     bench_section(summary, "Per scene: the fewest evaluations to reach an error");
     bench_both(summary,
                "For each target, the smallest evaluation count of any method, warp and medium "

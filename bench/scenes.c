@@ -327,6 +327,23 @@ static int occluder_visible(const occluder_params *p, double s)
     return dist2 >= p->radius * p->radius;
 }
 
+int bench_scene_breaks(const bench_scene *sc, hrm_real out[2])
+{
+    const occluder_params *p;
+    hrm_real origin[3] = {0, 0, 0}, dir[3] = {1, 0, 0}, light[3], centre[3];
+    int i, n = 0;
+    if (strcmp(sc->name, "occluder") != 0) return 0;
+    p = (const occluder_params *)sc->params;
+    light[0] = (hrm_real)p->light.delta;
+    light[1] = (hrm_real)p->light.D;
+    light[2] = 0;
+    for (i = 0; i < 3; ++i) centre[i] = (hrm_real)p->centre[i];
+    if (hrm_sphere_breaks(origin, dir, light, centre, (hrm_real)p->radius, (hrm_real)sc->t0,
+                          (hrm_real)sc->t1, out, &n) != HRM_OK)
+        return 0;
+    return n;
+}
+
 static void occluder_li(void *user, hrm_real t, hrm_real out[HRM_CHANNELS])
 {
     const occluder_params *p = BENCH_PARAMS(occluder_params, user);

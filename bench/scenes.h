@@ -112,6 +112,11 @@ typedef struct bench_scene {
 extern const bench_scene bench_scenes[];
 extern const int bench_scene_count;
 
+/* The breakpoints a renderer would give for the scene's ray: the
+   occluder's shadow edges from hrm_sphere_breaks; out[0..1], the count
+   returned (0 for a scene without an occluder). */
+int bench_scene_breaks(const bench_scene *sc, hrm_real out[2]);
+
 /* The scene's medium as hrm sees it, given as `how`, with user = calls
    (whose counts are cleared). Returns 0 if the scene cannot be given that
    way (a heterogeneous scene as constants). */
