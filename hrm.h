@@ -363,10 +363,25 @@
    - the transmittance layer's panels end at breakpoints and sample sigma_t
      on each side, so a medium whose coefficients jump there keeps its
      order; tau stays continuous across them.
+   - a budget (max_evals) keeps for every piece what it needs to start:
+     below (nbreaks + 1) times a method's least cost it is
+     HRM_ERR_BAD_OPTION.
    Measured (tests/test_breaks.c): across a shadow, Simpson and RK4 regain
    order 4.0 (3.8 under an equiangular warp), the midpoint rule 2.0;
    Gauss-Kronrod reaches round-off in 51 samples where it needed 917 for
-   1e-6 without the breakpoints.
+   1e-6 without the breakpoints. hrm_sphere_breaks gives the breakpoints
+   of a spherical occluder in front of a point light.
+   Jumps found automatically (options.find_jumps, nested Simpson and
+   global Gauss-Kronrod, no breakpoint needed): an interval that keeps 30%
+   of its parent's estimate three splits in a row does not shrink like a
+   smooth integrand; the solve stops there, bisects it on the source to 4
+   ulps of t (about 50 evaluations), and where the two sides differ by at
+   least 1% solves again with that point as a breakpoint. The located
+   points are returned in hrm_result.jumps (give them as the next pixel's
+   breakpoints); the evaluations of every pass count, and some of the
+   first pass's are repeated by the next. Measured on the shadow above at
+   rtol 1e-6: nested Simpson 239 evaluations (189 without the search, 300
+   times less accurate), Gauss-Kronrod 379 (917).
 
    ==========================================================================
    TRANSMITTANCE (options.tau_mode, options.tau_tol)
@@ -438,6 +453,9 @@
 #endif
 #ifndef HRM_MAX_BREAKS
 #define HRM_MAX_BREAKS 64 /* breakpoints per ray (options.breaks) */
+#endif
+#ifndef HRM_MAX_JUMPS
+#define HRM_MAX_JUMPS 8   /* jumps located per ray (hrm_result.jumps) */
 #endif
 #ifdef HRM_STATIC
 #define HRM_API static
@@ -639,6 +657,11 @@ typedef struct hrm_options {
                            HRM_MAX_BREAKS (64); entries equal to t0 or t1
                            change nothing */
     int nbreaks;
+    int find_jumps;     /* nested Simpson and global Gauss-Kronrod: 0 (the
+                           default) locates a jump that refinement does
+                           not shrink (a shadow's edge) by bisection, to
+                           the resolution of t, and solves again with it as
+                           a breakpoint; -1: never */
 } hrm_options;
 
 typedef struct hrm_stats {
@@ -657,6 +680,10 @@ typedef struct hrm_result {
                                      they accepted, whatever the status (a
                                      warning's estimated miss); -1: none
                                      (fixed-step methods, errors) */
+    int njumps;                 /* jumps located along the ray (nested
+                                   Simpson, global Gauss-Kronrod) */
+    hrm_real jumps[HRM_MAX_JUMPS]; /* their abscissae, ascending: the
+                                   breakpoints to give the next ray */
 } hrm_result;
 
 /* The defaults of `method`: what an all-zero hrm_options means, with the
@@ -1111,6 +1138,13 @@ typedef struct hrm__ctx {
                                   breakpoints (else -inf, +inf): samples
                                   at them are taken on the piece's side */
     hrm_real w_delta;          /* equiangular: the light's foot on the ray */
+    int find_jumps;            /* locate jumps (options.find_jumps) */
+    long piece_cost;           /* the least evaluations a piece costs */
+    int jump_found;            /* a split found an interval that does not
+                                  shrink: cand_a, cand_b in p */
+    hrm_real cand_a, cand_b;
+    int njumps;
+    hrm_real jumps[HRM_MAX_JUMPS]; /* located, as t */
     hrm_real w_ua;             /* equiangular: the angle of t0 (pa, which a
                                   piece between breakpoints moves) */
     int noise_only;            /* the last step or interval judged passed on
@@ -3238,6 +3272,7 @@ typedef struct hrm__iv {
     int s[4]; /* nested Simpson: its samples at a, a + h/4, a + h/2, a + 3h/4 */
     hrm__gk_io io; /* Gauss-Kronrod: ends, check sample, centre */
     char fell[HRM__NY]; /* nested Simpson: |S2 - S1| fell 8 times at its split */
+    int rough; /* splits in a row at which it kept 30% of its parent's estimate */
 } hrm__iv;
 
 typedef struct hrm__wf {
@@ -3264,6 +3299,7 @@ static void hrm__wf_rule(hrm__ctx *c, hrm__wf *w, hrm__iv *v, int b_sample)
         v->D[i] = v->E[i] = HRM_FABS(v->E[i]);
         v->fell[i] = 0;
     }
+    v->rough = 0;
 }
 
 /* How far a split lets the halves l, r of par trust their estimates:
@@ -3307,6 +3343,35 @@ static void hrm__wf_trust(const hrm__ctx *c, const hrm__iv *par, hrm__iv *l, hrm
         l->E[j] = l->E[j] * q > fl ? l->E[j] * q : fl;
         fl = 16 * HRM__EPS * HRM_FABS(r->V[j]);
         r->E[j] = r->E[j] * q > fl ? r->E[j] * q : fl;
+    }
+}
+
+/* A half that keeps 30% of its parent's raw estimate, three splits in a
+   row, does not shrink like a smooth integrand's (1/32 for nested
+   Simpson, far less for Gauss-Kronrod): a jump, most likely. It becomes
+   the candidate that hrm__dispatch locates (c->jump_found). */
+static void hrm__wf_rough(hrm__ctx *c, const hrm__iv *par, hrm__iv *l, hrm__iv *r)
+{
+    hrm_real dl = 0, dr = 0, dp = 0;
+    int j;
+    for (j = HRM__CH; j < HRM__NY; ++j) {
+        dl += l->D[j];
+        dr += r->D[j];
+        dp += par->D[j];
+    }
+    l->rough = dp > 0 && dl > HRM__R(0.3) * dp ? par->rough + 1 : 0;
+    r->rough = dp > 0 && dr > HRM__R(0.3) * dp ? par->rough + 1 : 0;
+    /* (locating the jump, at most 64 evaluations, and the first samples of
+       every piece of the solve with it must fit in the budget's rest, with
+       as much again to refine) */
+    if (!c->find_jumps || c->jump_found ||
+        c->max_evals - c->stats.evals < 64 + 2 * c->piece_cost * ((long)c->nbrk + 2))
+        return;
+    if (l->rough >= 3 || r->rough >= 3) {
+        const hrm__iv *v = l->rough >= 3 ? l : r;
+        c->jump_found = 1;
+        c->cand_a = v->a;
+        c->cand_b = v->b;
     }
 }
 
@@ -3382,6 +3447,7 @@ static void hrm__wf_split(hrm__ctx *c, hrm__wf *w, int k)
            the samples at rtol 1e-8..1e-10.) */
         hrm__wf_trust(c, &par, l, r, HRM__R(0.25), 1, 0);
     }
+    hrm__wf_rough(c, &par, l, r);
 }
 
 /* Sum the intervals: acc = (tau, L), err_acc = L's estimate; the score of
@@ -3467,6 +3533,7 @@ static int hrm__worst_first(hrm__ctx *c, hrm__wf *w, hrm_real acc[HRM__NY])
         hrm__wf_split(c, w, k);
         c->stats.steps++;
         c->stats.rejected++;
+        if (c->jump_found) return 0; /* solved again with it as a breakpoint */
         /* Round-off (QUADPACK qag): the halves reproduce the parent's value
            while their error does not drop. */
         for (ch = 0; ch < HRM__CH; ++ch) {
@@ -3637,6 +3704,17 @@ HRM__DEF hrm_options hrm_default_options(hrm_method method)
 }
 
 /* Resolve zeros to defaults; validate. */
+/* The least evaluations one piece of the ray costs the method (its first
+   step, or its initial panels or intervals). */
+static long hrm__piece_cost(const hrm_options *o)
+{
+    const hrm__method_info *mi = &hrm__methods[o->method];
+    return mi->family == HRM__PAIR ? hrm__stage_cost(mi->tb) + 1L
+         : o->method == HRM_NESTED_SIMPSON ? 4L * o->steps + 1
+         : o->method == HRM_GAUSS_KRONROD ? (o->gk_rule == HRM_GK_K7 ? 7L : 15L) * o->steps + 2
+         : 0L;
+}
+
 static hrm_status hrm__resolve(const hrm_options *in, hrm_options *o)
 {
     hrm_options d = hrm_default_options(in ? in->method : HRM_METHOD_DEFAULT);
@@ -3661,6 +3739,7 @@ static hrm_status hrm__resolve(const hrm_options *in, hrm_options *o)
     if ((int)o->gk_mode < 0 || (int)o->gk_mode > (int)HRM_GK_LOCAL) return HRM_ERR_BAD_OPTION;
     if (o->gk_mode == HRM_GK_DEFAULT) o->gk_mode = d.gk_mode;
     if ((int)o->gk_rule < 0 || (int)o->gk_rule > (int)HRM_GK_K7) return HRM_ERR_BAD_OPTION;
+    if (o->find_jumps != 0 && o->find_jumps != -1) return HRM_ERR_BAD_OPTION;
     if (o->gk_rule == HRM_GK_RULE_DEFAULT) o->gk_rule = HRM_GK_K15;
     if ((int)o->tau_mode < 0 || (int)o->tau_mode > (int)HRM_TAU_COUPLED) return HRM_ERR_BAD_OPTION;
     if (o->tau_mode == HRM_TAU_DEFAULT) o->tau_mode = d.tau_mode;
@@ -3682,11 +3761,9 @@ static hrm_status hrm__resolve(const hrm_options *in, hrm_options *o)
                                                                   ? 1 : mi->order)));
     /* below a few dozen epsilons round-off in tau dominates any estimate */
     if (o->tau_tol < 64 * HRM__EPS) o->tau_tol = 64 * HRM__EPS;
-    /* A budget below one step of the method could not be honoured. */
-    if (o->max_evals < (mi->family == HRM__PAIR ? hrm__stage_cost(mi->tb) + 1L
-                        : o->method == HRM_NESTED_SIMPSON ? 4L * o->steps + 1
-                        : o->method == HRM_GAUSS_KRONROD
-                            ? (o->gk_rule == HRM_GK_K7 ? 7L : 15L) * o->steps + 2 : 0L))
+    /* A budget below one step of the method on every piece could not be
+       honoured. */
+    if (o->max_evals < hrm__piece_cost(o) * ((long)(o->nbreaks > 0 ? o->nbreaks : 0) + 1))
         return HRM_ERR_BAD_OPTION;
     return HRM_OK;
 }
@@ -3728,6 +3805,12 @@ static hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, const hrm_medium *m, 
     }
     c->atol = o->atol;
     c->max_evals = o->max_evals;
+    /* (not on a ray farther from the origin than it is long, whose t is
+       too coarse to locate anything within it) */
+    c->piece_cost = hrm__piece_cost(o);
+    c->find_jumps = o->find_jumps == 0 && !c->rte && HRM_FABS(t0) <= c->T &&
+                    (o->method == HRM_NESTED_SIMPSON ||
+                     (o->method == HRM_GAUSS_KRONROD && o->gk_mode == HRM_GK_GLOBAL));
     c->gk = o->gk_rule == HRM_GK_K7 ? &hrm__k7 : &hrm__k15;
     c->rough_left = HRM__JUMP;
     if (c->homog) {
@@ -3827,7 +3910,8 @@ static void hrm__adaptive(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM__NY]
     for (pass = 0; pass < 2; ++pass) {
         int held = 1;
         hrm__adaptive_once(c, o, y);
-        if (c->status != HRM_OK || (c->warning != HRM_OK && c->warning != HRM_WARN_RTOL_CLIPPED))
+        if (c->status != HRM_OK || c->jump_found ||
+            (c->warning != HRM_OK && c->warning != HRM_WARN_RTOL_CLIPPED))
             return; /* a warning already says the tolerance was missed */
         /* only a scale above |L| can have let more through */
         for (n = 0; n < HRM__CH; ++n)
@@ -3898,14 +3982,17 @@ static hrm_real hrm__unmap(hrm__ctx *c, hrm_real off)
    sum; Adams-Bashforth restarts with RK4 on each), and composed: L =
    sum of the pieces' L, each attenuated by Tr up to its start where its
    rule integrated tau from its own start (coupled tau, the RTE form). */
-static void hrm__dispatch(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM__NY])
+static void hrm__solve_pieces(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM__NY])
 {
     const hrm__method_info *mi = &hrm__methods[o->method];
     hrm_real P[HRM_MAX_BREAKS + 2], S[HRM_MAX_BREAKS + 2], pa = c->pa, pb = c->pb;
     hrm_real yk[HRM__NY], err[HRM__CH], acc[HRM__CH];
     int n = c->nbrk + 1, N[HRM_MAX_BREAKS + 1], k, i, fixed;
+    long max_evals = c->max_evals;
 
     if (c->nbrk == 0) {
+        c->scale_fixed = 0;
+        hrm__fill(c->scale, HRM__NY, 0);
         hrm__dispatch_one(c, o, o->steps, y);
         return;
     }
@@ -3942,7 +4029,7 @@ static void hrm__dispatch(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM__NY]
     hrm__fill(y, HRM__NY, 0);
     hrm__fill(err, HRM__CH, 0);
     hrm__fill(acc, HRM__CH, c->rte ? 1 : 0);
-    for (k = 0; k < n && c->status == HRM_OK; ++k) {
+    for (k = 0; k < n && c->status == HRM_OK && !c->jump_found; ++k) {
         if (!(P[k + 1] > P[k])) continue;
         c->pa = P[k];
         c->pb = P[k + 1];
@@ -3950,7 +4037,10 @@ static void hrm__dispatch(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM__NY]
         c->s_hi = S[k + 1];
         c->scale_fixed = 0;
         hrm__fill(c->scale, HRM__NY, 0);
+        /* the budget keeps what the pieces after this one need to start */
+        c->max_evals = max_evals - c->piece_cost * (long)(n - 1 - k);
         hrm__dispatch_one(c, o, fixed ? N[k] : o->steps, yk);
+        c->max_evals = max_evals;
         for (i = 0; i < HRM__CH; ++i) {
             /* Tr up to the piece's start, where the piece's L is relative */
             hrm_real f = c->rte ? acc[i] : c->coupled ? HRM_EXP(-acc[i]) : 1;
@@ -3966,6 +4056,89 @@ static void hrm__dispatch(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM__NY]
     c->pb = pb;
     c->s_lo = S[0];
     c->s_hi = S[n];
+}
+
+/* The source S (per unit length) in every channel at parameter p, and the
+   offset there. */
+static void hrm__source_at(hrm__ctx *c, hrm_real p, hrm_real S[HRM__CH], hrm_real *off)
+{
+    hrm__pt pt;
+    int i;
+    hrm__eval(c, p, &pt);
+    for (i = 0; i < HRM__CH; ++i) hrm__source_of(&pt, i, &S[i]);
+    *off = pt.off;
+}
+
+/* Locate the jump inside the candidate [cand_a, cand_b] (in p) by
+   bisection on the source: the half whose ends differ more keeps it,
+   until its ends are 4 ulps of t apart (about 50 evaluations in double
+   on a unit interval). A jump of at least 1% of the larger side is kept,
+   as t, in *tj; returns 0 where there is none (a smooth integrand that
+   merely refines slowly). */
+static int hrm__locate_jump(hrm__ctx *c, hrm_real *tj)
+{
+    hrm_real pl = c->cand_a, pr = c->cand_b, Sl[HRM__CH], Sr[HRM__CH], Sm[HRM__CH];
+    hrm_real ol, or_, om, d = 0, big = 0;
+    int it, i;
+    hrm__source_at(c, pl, Sl, &ol);
+    hrm__source_at(c, pr, Sr, &or_);
+    for (it = 0; it < 64 && c->status == HRM_OK; ++it) {
+        hrm_real pm = pl / 2 + pr / 2, dl = 0, dr = 0;
+        if (!(pm > pl && pm < pr)) break;
+        if (or_ - ol <= 4 * HRM__EPS * (HRM_FABS(c->t0 + ol) + HRM_FABS(c->t0 + or_)) / 2) break;
+        hrm__source_at(c, pm, Sm, &om);
+        for (i = 0; i < HRM__CH; ++i) {
+            dl += HRM_FABS(Sm[i] - Sl[i]);
+            dr += HRM_FABS(Sr[i] - Sm[i]);
+        }
+        if (dl > dr) {
+            pr = pm;
+            or_ = om;
+            memcpy(Sr, Sm, sizeof Sm);
+        } else {
+            pl = pm;
+            ol = om;
+            memcpy(Sl, Sm, sizeof Sm);
+        }
+    }
+    for (i = 0; i < HRM__CH; ++i) {
+        d += HRM_FABS(Sr[i] - Sl[i]);
+        big += HRM_FABS(Sl[i]) > HRM_FABS(Sr[i]) ? HRM_FABS(Sl[i]) : HRM_FABS(Sr[i]);
+    }
+    if (!(d > HRM__R(0.01) * big)) return 0;
+    *tj = c->t0 + (ol / 2 + or_ / 2);
+    return 1;
+}
+
+/* Run the method over the pieces; where a split found a jump, locate it,
+   make it a breakpoint (reported in hrm_result.jumps) and solve again.
+   The evaluations of every pass count. */
+static void hrm__dispatch(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM__NY])
+{
+    hrm_status w0 = c->warning;
+    for (;;) {
+        hrm_real tj, off;
+        int k;
+        c->jump_found = 0;
+        hrm__solve_pieces(c, o, y);
+        if (!c->jump_found || c->status != HRM_OK) return;
+        c->warning = w0;
+        if (c->njumps >= HRM_MAX_JUMPS || c->nbrk >= HRM_MAX_BREAKS || !hrm__locate_jump(c, &tj)) {
+            c->find_jumps = 0; /* solve once more without looking */
+            continue;
+        }
+        off = tj - c->t0;
+        if (!(off > 0 && off < c->off_end) || hrm__is_break(c, off)) {
+            c->find_jumps = 0;
+            continue;
+        }
+        for (k = c->nbrk; k > 0 && c->brk_off[k - 1] > off; --k) c->brk_off[k] = c->brk_off[k - 1];
+        c->brk_off[k] = off;
+        c->nbrk++;
+        for (k = c->njumps; k > 0 && c->jumps[k - 1] > tj; --k) c->jumps[k] = c->jumps[k - 1];
+        c->jumps[k] = tj;
+        c->njumps++;
+    }
 }
 
 /* Tr(t0, t1) and the status: a closed form is exact in every method and
@@ -4027,7 +4200,8 @@ static hrm_status hrm__finish(hrm__ctx *c, const hrm_options *o, const hrm_real 
    source, so only sigma_t is integrated). */
 static hrm_status hrm__run(const hrm_medium *m, hrm_real t0, hrm_real t1,
                            const hrm_options *in, int tr_only, hrm_real L[HRM__CH],
-                           hrm_real Tr[HRM__CH], hrm_real err[HRM__CH], hrm_stats *stats)
+                           hrm_real Tr[HRM__CH], hrm_real err[HRM__CH], hrm_stats *stats,
+                           int *njumps, hrm_real *jumps)
 {
     hrm__ctx c;
     hrm__tau layer;
@@ -4037,6 +4211,10 @@ static hrm_status hrm__run(const hrm_medium *m, hrm_real t0, hrm_real t1,
 
     memset(&c, 0, sizeof c);
     memset(stats, 0, sizeof *stats);
+    if (njumps) {
+        *njumps = 0;
+        hrm__fill(jumps, HRM_MAX_JUMPS, 0);
+    }
     hrm__fill(L, HRM__CH, 0);
     hrm__fill(Tr, HRM__CH, 1);
     hrm__fill(err, HRM__CH, -1);
@@ -4060,6 +4238,10 @@ static hrm_status hrm__run(const hrm_medium *m, hrm_real t0, hrm_real t1,
     }
     st = hrm__finish(&c, &o, y, L, Tr, err);
     *stats = c.stats;
+    if (njumps && st >= 0) {
+        *njumps = c.njumps;
+        memcpy(jumps, c.jumps, sizeof c.jumps);
+    }
     return st;
 }
 
@@ -4077,7 +4259,7 @@ HRM__DEF hrm_status hrm_solve(const hrm_medium *medium, hrm_real t0, hrm_real t1
     }
     /* Work on a local copy: result may alias nothing we read, and a failed
        solve leaves exactly the defined error result. */
-    st = hrm__run(medium, t0, t1, options, 0, r.L, r.Tr, r.error, &r.stats);
+    st = hrm__run(medium, t0, t1, options, 0, r.L, r.Tr, r.error, &r.stats, &r.njumps, r.jumps);
     *result = r;
     return st;
 }
@@ -4095,7 +4277,7 @@ HRM__DEF hrm_status hrm_transmittance(const hrm_medium *medium, hrm_real t0,
         if (stats) memset(stats, 0, sizeof *stats);
         return HRM_ERR_NULL_ARGUMENT;
     }
-    st = hrm__run(medium, t0, t1, options, 1, L, out, err, &s);
+    st = hrm__run(medium, t0, t1, options, 1, L, out, err, &s, NULL, NULL);
     memcpy(Tr, out, sizeof out);
     if (stats) *stats = s;
     return st;

@@ -225,6 +225,7 @@ static void ad_eval_counts(void)
                     /* one sigma evaluation per abscissa: the coupled
                        contract (decoupled counts: test_transmittance.c) */
                     o.tau_mode = HRM_TAU_COUPLED;
+                    o.find_jumps = -1; /* one pass: the formulas below */
                     hrm_medium m = problem_medium(&p);
                     hrm_result r;
                     hrm_status st;
@@ -384,6 +385,7 @@ static void ad_limits(void)
         int c;
         ad_ray(AD_SHADOW, &t0, &t1);
         o.h_min = (hrm_real)hmin;
+        o.find_jumps = -1; /* (a located edge would need no step below h_min) */
         st = hrm_solve(&m, (hrm_real)t0, (hrm_real)t1, &o, &r);
         CHECK_INT(st, HRM_WARN_H_MIN, "%s: h_min %g at rtol %g", cfg->name, hmin, rtol);
         CHECK(result_finite(&r), "%s: h_min: finite estimate", cfg->name);
@@ -417,6 +419,9 @@ static void ad_limits(void)
         hrm_status st;
         int c, same = 1;
         ad_ray(AD_SHADOW, &t0, &t1);
+        /* one pass, so that a budget cuts the same run short (the jump
+           search's budgets: test_breaks.c) */
+        o.find_jumps = -1;
         st = hrm_solve(&m, (hrm_real)t0, (hrm_real)t1, &o, &full);
         /* at least 100 evaluations (150 before nested Simpson returned its
            Richardson-corrected halves: it now solves the shadow at float's
@@ -425,6 +430,7 @@ static void ad_limits(void)
         while (st == HRM_OK && full.stats.evals <= 100 && rtol / 2 > floor_rtol) {
             rtol /= 2;
             o = ad_options(cfg, rtol);
+            o.find_jumps = -1;
             st = hrm_solve(&m, (hrm_real)t0, (hrm_real)t1, &o, &full);
         }
         CHECK_INT(st, HRM_OK, "%s: shadow at rtol %g without a budget", cfg->name, rtol);

@@ -324,6 +324,41 @@ static void br_adaptive(void)
             }
 }
 
+/* 5b. A budget with breakpoints: every piece keeps what the pieces after it
+   need to start, so evaluations stay within max_evals at every budget
+   from (breakpoints + 1) times the method's least cost (below it:
+   HRM_ERR_BAD_OPTION) to 400; finite results. */
+static void br_budget(void)
+{
+    static const hrm_method ms[] = {HRM_NESTED_SIMPSON, HRM_GAUSS_KRONROD, HRM_DORMAND_PRINCE};
+    br_scene s = {3.3, 6.1, 0};
+    hrm_real edges[2];
+    int mi;
+    edges[0] = (hrm_real)s.lo;
+    edges[1] = (hrm_real)s.hi;
+    for (mi = 0; mi < 3; ++mi) {
+        hrm_medium m = br_medium(&s, 1);
+        long budget, over = 0, bad = 0, tried = 0;
+        for (budget = 1; budget <= 400; budget += budget < 60 ? 1 : 17) {
+            hrm_options o = hrm_default_options(ms[mi]);
+            hrm_result r;
+            hrm_status st;
+            o.rtol = (hrm_real)1e-8;
+            o.max_evals = budget;
+            o.breaks = edges;
+            o.nbreaks = 2;
+            st = hrm_solve(&m, 0, 10, &o, &r);
+            if (st == HRM_ERR_BAD_OPTION) continue;
+            tried++;
+            bad += st < 0 || !result_finite(&r);
+            over += r.stats.evals > budget;
+        }
+        CHECK(tried > 20, "%s: %ld budgets tried", hrm_method_name(ms[mi]), tried);
+        CHECK_INT(over, 0, "%s: budgets with breakpoints: evaluations within", hrm_method_name(ms[mi]));
+        CHECK_INT(bad, 0, "%s: budgets with breakpoints: finite results", hrm_method_name(ms[mi]));
+    }
+}
+
 /* 6. Monte Carlo stratified over the pieces: the mean of 256 seeds at
    N = 16 is within 4 standard errors of L (unbiased), and the RMS error
    is below the unstratified one's (noted). */
@@ -479,6 +514,77 @@ static void br_sphere(void)
     }
 }
 
+/* 8. Jumps found automatically (no breakpoint given): nested Simpson and
+   global Gauss-Kronrod, on the shadow scene at rtol 1e-4..1e-8, both
+   medium paths. Both edges are located to within 8 ulps of t (the
+   bisection stops at 4) and reported in result.jumps; the answer is
+   within 3 rtol; the evaluations with and without the search are noted.
+   On the same scene without its shadow nothing is found. Under any budget
+   from the method's minimum to 400, evaluations stay within it. */
+static void br_jumps(void)
+{
+    static const hrm_method ms[] = {HRM_NESTED_SIMPSON, HRM_GAUSS_KRONROD};
+    int mi, cb, k, nr = real_is_float() ? 1 : 3;
+    for (mi = 0; mi < 2; ++mi)
+        for (cb = 0; cb < 2; ++cb)
+            for (k = 0; k < nr; ++k) {
+                br_scene s = {3.3, 6.1, 0};
+                double rtol = pow(10, -4 - 2 * k), loc = 0;
+                hrm_medium m = br_medium(&s, cb);
+                hrm_options o = hrm_default_options(ms[mi]);
+                hrm_result r, plain;
+                hrm_status st;
+                int j;
+                o.rtol = (hrm_real)rtol;
+                st = hrm_solve(&m, 0, 10, &o, &r);
+                CHECK_INT(st, HRM_OK, "%s, rtol %g: status", hrm_method_name(ms[mi]), rtol);
+                CHECK_INT(r.njumps, 2, "%s, %s, rtol %g: jumps found", hrm_method_name(ms[mi]),
+                          cb ? "sigma callbacks" : "constants", rtol);
+                for (j = 0; j < r.njumps && j < 2; ++j) {
+                    double edge = j ? s.hi : s.lo, e = fabs((double)r.jumps[j] - edge) / (real_eps() * edge);
+                    loc = e > loc ? e : loc;
+                }
+                CHECK(loc <= 8, "%s: jumps located within %.1f ulps of the edges", hrm_method_name(ms[mi]), loc);
+                CHECK(br_rel(&r, br_exact(&s)) <= 3 * rtol, "%s, rtol %g: error %.3g <= 3 rtol",
+                      hrm_method_name(ms[mi]), rtol, br_rel(&r, br_exact(&s)));
+                o.find_jumps = -1;
+                hrm_solve(&m, 0, 10, &o, &plain);
+                CHECK_INT(plain.njumps, 0, "%s: find_jumps -1: none reported", hrm_method_name(ms[mi]));
+                if (cb == 0)
+                    NOTE("%-15s rtol %.0e: %4ld evaluations finding the jumps (error %.1e), %4ld without (%.1e)",
+                         hrm_method_name(ms[mi]), rtol, r.stats.evals, br_rel(&r, br_exact(&s)),
+                         plain.stats.evals, br_rel(&plain, br_exact(&s)));
+            }
+    for (mi = 0; mi < 2; ++mi) {
+        br_scene s = {20, 21, 0}; /* the shadow beyond the ray: smooth */
+        hrm_medium m = br_medium(&s, 1);
+        hrm_options o = hrm_default_options(ms[mi]);
+        hrm_result r;
+        long budget, over = 0;
+        o.rtol = (hrm_real)(real_is_float() ? 1e-5 : 1e-9);
+        hrm_solve(&m, 0, 10, &o, &r);
+        CHECK_INT(r.njumps, 0, "%s, smooth: no jump found", hrm_method_name(ms[mi]));
+        s.lo = 3.3;
+        s.hi = 6.1;
+        o.rtol = (hrm_real)1e-6;
+        for (budget = 20; budget <= 400; budget += 7) {
+            o.max_evals = budget;
+            if (hrm_solve(&m, 0, 10, &o, &r) < 0) continue;
+            over += r.stats.evals > budget || !result_finite(&r);
+        }
+        CHECK_INT(over, 0, "%s: budgets 20..400 with the jump search: evaluations within, finite",
+                  hrm_method_name(ms[mi]));
+    }
+    {
+        hrm_options o = hrm_default_options(HRM_NESTED_SIMPSON);
+        br_scene s = {3.3, 6.1, 0};
+        hrm_medium m = br_medium(&s, 0);
+        hrm_result r;
+        o.find_jumps = 2;
+        CHECK_INT(hrm_solve(&m, 0, 10, &o, &r), HRM_ERR_BAD_OPTION, "find_jumps 2: bad option");
+    }
+}
+
 void breaks_tests(void)
 {
     RUN_GROUP(br_bad_lists);
@@ -486,6 +592,8 @@ void breaks_tests(void)
     RUN_GROUP(br_ab4);
     RUN_GROUP(br_tau);
     RUN_GROUP(br_adaptive);
+    RUN_GROUP(br_budget);
     RUN_GROUP(br_monte_carlo);
     RUN_GROUP(br_sphere);
+    RUN_GROUP(br_jumps);
 }
