@@ -4135,6 +4135,8 @@ static void hrm__dispatch(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM__NY]
         for (k = c->nbrk; k > 0 && c->brk_off[k - 1] > off; --k) c->brk_off[k] = c->brk_off[k - 1];
         c->brk_off[k] = off;
         c->nbrk++;
+        /* the layer's panels end at breakpoints: built again */
+        if (c->decoupled) hrm__tau_init(c->tau, c->off_end, c->tau->tol);
         for (k = c->njumps; k > 0 && c->jumps[k - 1] > tj; --k) c->jumps[k] = c->jumps[k - 1];
         c->jumps[k] = tj;
         c->njumps++;

@@ -164,14 +164,17 @@ typedef struct bench_trans {
     bench_trans_row rows[BENCH_MAX_METHODS * BENCH_SECTION_PARAMS];
 } bench_trans;
 
-/* Breakpoints on the occluder scene: per method, warp and medium, the
-   fewest evaluations from which the sweep stays within 1e-2, 1e-4, 1e-6,
-   without [0] and with [1] the shadow's edges from hrm_sphere_breaks
-   (-1: not reached). */
+/* Breakpoints on the occluder and slab scenes: per method, warp and
+   medium, the fewest evaluations from which the sweep stays within 1e-2,
+   1e-4, 1e-6 (-1: not reached), [0] without breakpoints or the jump
+   search, [1] with the exact breakpoints (the occluder's from
+   hrm_sphere_breaks, the slab's faces), [2] with the jump search alone
+   (the default of nested Simpson and global Gauss-Kronrod). */
 #define BENCH_BRK_ROWS (BENCH_MAX_METHODS * 4)
+#define BENCH_BRK_SCENES 2
 typedef struct bench_brk_row {
     int method, warp, medium;
-    long fewest[2][3];
+    long fewest[3][3];
 } bench_brk_row;
 
 typedef struct bench_brk {
@@ -231,7 +234,7 @@ typedef struct bench_state {
 
     bench_equi equi;
     bench_trans trans;
-    bench_brk brk;
+    bench_brk brk[BENCH_BRK_SCENES];
     bench_overhead overhead[2]; /* directional (constants), hetero (callbacks) */
 } bench_state;
 

@@ -640,13 +640,14 @@ static double bench_section_solve_breaks(bench_state *st, int si, const bench_me
                                          bench_warp_id warp, double param, const hrm_medium *m,
                                          bench_calls *calls, hrm_tau_mode tau_mode,
                                          const char *label, const hrm_real *breaks, int nbreaks,
-                                         bench_row *row)
+                                         int find_jumps, bench_row *row)
 {
     bench_case bc;
     bench_case_init(&bc, st, &bench_scenes[si], me, warp, param, m, calls, label);
     bc.options.tau_mode = tau_mode;
     bc.options.breaks = breaks;
     bc.options.nbreaks = nbreaks;
+    bc.options.find_jumps = find_jumps;
     memset(row, 0, sizeof *row);
     row->scene = si;
     row->warp = warp;
@@ -662,7 +663,7 @@ static double bench_section_solve(bench_state *st, int si, const bench_method *m
                                   bench_row *row)
 {
     return bench_section_solve_breaks(st, si, me, warp, param, m, calls, tau_mode, label, NULL, 0,
-                                      row);
+                                      0, row);
 }
 
 void bench_measure_equiangular(bench_state *st)
@@ -770,45 +771,57 @@ static void bench_brk_fewest(const long *evals, const double *err, int n, long o
 
 void bench_measure_breaks(bench_state *st)
 {
-    bench_brk *b = &st->brk;
-    int si = bench_find_scene("occluder"), mi, w, j, with, k;
-    hrm_real br[2];
+    static const char *const names[BENCH_BRK_SCENES] = {"occluder", "slab"};
     static const bench_warp_id warps[2] = {BENCH_WARP_NONE, BENCH_WARP_EQUIANGULAR};
-    b->scene = -1;
-    b->n = 0;
-    if (si < 0 || !bench_scene_selected(&st->cfg, si)) return;
-    b->scene = si;
-    b->nbreaks = bench_scene_breaks(&bench_scenes[si], br);
-    for (k = 0; k < b->nbreaks; ++k) b->breaks[k] = (double)br[k];
-    for (mi = 0; mi < st->nmethods; ++mi) {
-        const bench_method *me = &st->methods[mi];
-        const double *params;
-        int np;
-        if (!bench_method_in_sections(st, mi) || me->kind == BENCH_RANDOM) continue;
-        np = bench_params_of(&st->cfg, me, &params);
-        for (w = 0; w < 2; ++w)
-            for (j = 0; j < BENCH_MEDIUM_COUNT && b->n < BENCH_BRK_ROWS; ++j) {
-                bench_brk_row *r = &b->rows[b->n++];
-                hrm_medium m;
-                bench_calls calls;
-                r->method = mi;
-                r->warp = warps[w];
-                r->medium = j;
-                bench_medium_build(&bench_scenes[si], (bench_medium_id)j, &m, &calls);
-                for (with = 0; with < 2; ++with) {
-                    long ev[BENCH_MAX_PARAMS];
-                    double er[BENCH_MAX_PARAMS];
-                    for (k = 0; k < np; ++k) {
-                        bench_row row;
-                        er[k] = bench_section_solve_breaks(st, si, me, warps[w], params[k], &m, &calls,
-                                                           HRM_TAU_DEFAULT, bench_medium_names[j],
-                                                           with ? br : NULL, with ? b->nbreaks : 0,
-                                                           &row);
-                        ev[k] = row.stats.evals;
+    int bi;
+    for (bi = 0; bi < BENCH_BRK_SCENES; ++bi) {
+        bench_brk *b = &st->brk[bi];
+        int si = bench_find_scene(names[bi]), mi, w, j, way, k;
+        const bench_scene *sc;
+        hrm_real br[2];
+        b->scene = -1;
+        b->n = 0;
+        if (si < 0 || !bench_scene_selected(&st->cfg, si)) continue;
+        b->scene = si;
+        sc = &bench_scenes[si];
+        b->nbreaks = bench_scene_breaks(sc, br);
+        for (k = 0; k < b->nbreaks; ++k) b->breaks[k] = (double)br[k];
+        for (mi = 0; mi < st->nmethods; ++mi) {
+            const bench_method *me = &st->methods[mi];
+            const double *params;
+            int np;
+            if (!bench_method_in_sections(st, mi) || me->kind == BENCH_RANDOM) continue;
+            np = bench_params_of(&st->cfg, me, &params);
+            for (w = 0; w < 2; ++w) {
+                bench_medium_id mids[BENCH_MEDIUM_COUNT];
+                int nm = bench_scene_media(&st->cfg, si, mids);
+                /* the slab has no point light: its natural warp instead */
+                bench_warp_id warp = w == 0 ? warps[0] : sc->light ? warps[1] : sc->natural_warp;
+                for (j = 0; j < nm && b->n < BENCH_BRK_ROWS; ++j) {
+                    bench_brk_row *r = &b->rows[b->n++];
+                    hrm_medium m;
+                    bench_calls calls;
+                    r->method = mi;
+                    r->warp = warp;
+                    r->medium = mids[j];
+                    bench_medium_build(sc, mids[j], &m, &calls);
+                    for (way = 0; way < 3; ++way) {
+                        long ev[BENCH_MAX_PARAMS];
+                        double er[BENCH_MAX_PARAMS];
+                        for (k = 0; k < np; ++k) {
+                            bench_row row;
+                            er[k] = bench_section_solve_breaks(st, si, me, warp, params[k], &m, &calls,
+                                                               HRM_TAU_DEFAULT, bench_medium_names[mids[j]],
+                                                               way == 1 ? br : NULL,
+                                                               way == 1 ? b->nbreaks : 0,
+                                                               way == 0 ? -1 : 0, &row);
+                            ev[k] = row.stats.evals;
+                        }
+                        bench_brk_fewest(ev, er, np, r->fewest[way]);
                     }
-                    bench_brk_fewest(ev, er, np, r->fewest[with]);
                 }
             }
+        }
     }
 }
 

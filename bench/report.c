@@ -639,45 +639,48 @@ static void bench_report_equiangular(const bench_state *st, const bench_out *o)
 
 static void bench_report_breaks(const bench_state *st, const bench_out *o)
 {
-    const bench_brk *b = &st->brk;
-    bench_table t;
-    int i, w;
-    if (b->scene < 0) return;
-    bench_section(o, "Breakpoints: the occluder's shadow edges given to hrm");
-    bench_both(o,
-               "The fewest evaluations from which a sweep stays within a relative error of 1e-2 / "
-               "1e-4 / 1e-6 (- : not reached in the sweep), without and with options.breaks set "
-               "to the %d shadow edges that hrm_sphere_breaks gives for the scene's ray (%.9g, "
-               "%.9g). Fixed-step methods over N, adaptive ones over rtol.\n\n",
-               b->nbreaks, b->nbreaks > 0 ? b->breaks[0] : (double)NAN,
-               b->nbreaks > 1 ? b->breaks[1] : (double)NAN);
-    bench_table_init(&t, 5);
-    bench_table_row(&t);
-    bench_table_cell(&t, 0, "method");
-    bench_table_cell(&t, 1, "warp");
-    bench_table_cell(&t, 2, "medium");
-    bench_table_cell(&t, 3, "without breakpoints");
-    bench_table_cell(&t, 4, "with breakpoints");
-    for (i = 0; i < b->n; ++i) {
-        const bench_brk_row *r = &b->rows[i];
-        char cell[2][80];
-        for (w = 0; w < 2; ++w) {
-            char part[3][24];
-            int k;
-            for (k = 0; k < 3; ++k) {
-                if (r->fewest[w][k] < 0) snprintf(part[k], sizeof part[k], "-");
-                else snprintf(part[k], sizeof part[k], "%ld", r->fewest[w][k]);
-            }
-            snprintf(cell[w], sizeof cell[w], "%s / %s / %s", part[0], part[1], part[2]);
-        }
+    static const char *const heads[3] = {"without", "with breakpoints", "jump search"};
+    int bi, i, w, any = 0;
+    for (bi = 0; bi < BENCH_BRK_SCENES; ++bi) any |= st->brk[bi].scene >= 0;
+    if (!any) return;
+    bench_section(o, "Breakpoints: shadow edges and medium boundaries");
+    bench_both(o, "The fewest evaluations from which a sweep stays within a relative error of 1e-2 / "
+                  "1e-4 / 1e-6 (- : not reached in the sweep): without breakpoints or the jump "
+                  "search (find_jumps = -1), with options.breaks set to the scene's jumps, and with "
+                  "the jump search alone (the default of nested Simpson and global Gauss-Kronrod; "
+                  "the other methods are as without). Fixed-step methods over N, adaptive ones over "
+                  "rtol.\n\n");
+    for (bi = 0; bi < BENCH_BRK_SCENES; ++bi) {
+        const bench_brk *b = &st->brk[bi];
+        bench_table t;
+        if (b->scene < 0) continue;
+        bench_both(o, "%s: breakpoints at %.9g, %.9g%s.\n\n", bench_scenes[b->scene].name,
+                   b->nbreaks > 0 ? b->breaks[0] : (double)NAN, b->nbreaks > 1 ? b->breaks[1] : (double)NAN,
+                   bi == 0 ? " (hrm_sphere_breaks)" : " (the slab's faces)");
+        bench_table_init(&t, 6);
         bench_table_row(&t);
-        bench_table_cell(&t, 0, "%s", st->methods[r->method].name);
-        bench_table_cell(&t, 1, "%s", bench_warp_names[r->warp]);
-        bench_table_cell(&t, 2, "%s", bench_medium_names[r->medium]);
-        bench_table_cell(&t, 3, "%s", cell[0]);
-        bench_table_cell(&t, 4, "%s", cell[1]);
+        bench_table_cell(&t, 0, "method");
+        bench_table_cell(&t, 1, "warp");
+        bench_table_cell(&t, 2, "medium");
+        for (w = 0; w < 3; ++w) bench_table_cell(&t, 3 + w, "%s", heads[w]);
+        for (i = 0; i < b->n; ++i) {
+            const bench_brk_row *r = &b->rows[i];
+            bench_table_row(&t);
+            bench_table_cell(&t, 0, "%s", st->methods[r->method].name);
+            bench_table_cell(&t, 1, "%s", bench_warp_names[r->warp]);
+            bench_table_cell(&t, 2, "%s", bench_medium_names[r->medium]);
+            for (w = 0; w < 3; ++w) {
+                char part[3][24];
+                int k;
+                for (k = 0; k < 3; ++k) {
+                    if (r->fewest[w][k] < 0) snprintf(part[k], sizeof part[k], "-");
+                    else snprintf(part[k], sizeof part[k], "%ld", r->fewest[w][k]);
+                }
+                bench_table_cell(&t, 3 + w, "%s / %s / %s", part[0], part[1], part[2]);
+            }
+        }
+        bench_table_emit(&t, o);
     }
-    bench_table_emit(&t, o);
 }
 
 static void bench_report_transmittance(const bench_state *st, const bench_out *o)

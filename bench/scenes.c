@@ -327,22 +327,6 @@ static int occluder_visible(const occluder_params *p, double s)
     return dist2 >= p->radius * p->radius;
 }
 
-int bench_scene_breaks(const bench_scene *sc, hrm_real out[2])
-{
-    const occluder_params *p;
-    hrm_real origin[3] = {0, 0, 0}, dir[3] = {1, 0, 0}, light[3], centre[3];
-    int i, n = 0;
-    if (strcmp(sc->name, "occluder") != 0) return 0;
-    p = (const occluder_params *)sc->params;
-    light[0] = (hrm_real)p->light.delta;
-    light[1] = (hrm_real)p->light.D;
-    light[2] = 0;
-    for (i = 0; i < 3; ++i) centre[i] = (hrm_real)p->centre[i];
-    if (hrm_sphere_breaks(origin, dir, light, centre, (hrm_real)p->radius, (hrm_real)sc->t0,
-                          (hrm_real)sc->t1, out, &n) != HRM_OK)
-        return 0;
-    return n;
-}
 
 static void occluder_li(void *user, hrm_real t, hrm_real out[HRM_CHANNELS])
 {
@@ -976,6 +960,93 @@ static void smoke_print(FILE *out, const void *params)
 /* The scene table: a new scene is one more row.                            */
 /* ------------------------------------------------------------------------ */
 
+
+/* ------------------------------------------------------------------------ */
+/* slab: a dense slab (sigma_t 5, 100 times the medium around it) across    */
+/* [4, 5] of a thin medium, from callbacks, under a constant sky light:     */
+/* the integrand jumps at both faces.                                       */
+/* ------------------------------------------------------------------------ */
+
+typedef struct slab_params {
+    double sigma_a[3], sigma_s[3]; /* outside */
+    double dense;                  /* inside: these times dense */
+    double lo, hi;                 /* the slab's faces */
+    double E[3];                   /* Li */
+} slab_params;
+
+static const slab_params slab_scene = {
+    {0.01, 0.01, 0.01}, {0.04, 0.045, 0.05}, 100.0, 4.0, 5.0, {2.0, 1.5, 1.0}};
+
+static double slab_k(const slab_params *p, double s) { return s >= p->lo && s < p->hi ? p->dense : 1; }
+
+static void slab_sigma_a(void *user, hrm_real t, hrm_real out[HRM_CHANNELS])
+{
+    const slab_params *p = BENCH_PARAMS(slab_params, user);
+    int c;
+    bench_count(user, BENCH_CB_SIGMA_A, t);
+    for (c = 0; c < 3; ++c) out[c] = (hrm_real)(p->sigma_a[c] * slab_k(p, (double)t));
+}
+
+static void slab_sigma_s(void *user, hrm_real t, hrm_real out[HRM_CHANNELS])
+{
+    const slab_params *p = BENCH_PARAMS(slab_params, user);
+    int c;
+    bench_count(user, BENCH_CB_SIGMA_S, t);
+    for (c = 0; c < 3; ++c) out[c] = (hrm_real)(p->sigma_s[c] * slab_k(p, (double)t));
+}
+
+static void slab_li(void *user, hrm_real t, hrm_real out[HRM_CHANNELS])
+{
+    const slab_params *p = BENCH_PARAMS(slab_params, user);
+    int c;
+    bench_count(user, BENCH_CB_LI, t);
+    for (c = 0; c < 3; ++c) out[c] = (hrm_real)(p->E[c] * BENCH_PHASE);
+}
+
+static void slab_build(const void *params, hrm_medium *m)
+{
+    (void)params;
+    m->sigma_a = slab_sigma_a;
+    m->sigma_s = slab_sigma_s;
+    m->Li = slab_li;
+}
+
+/* tau(t0, s): sigma_t times the length outside, plus dense times inside */
+static void slab_integrand(const void *params, long double t0, long double s,
+                           long double out[HRM_CHANNELS])
+{
+    const slab_params *p = (const slab_params *)params;
+    long double lo = LD(p->lo), hi = LD(p->hi), a = t0 > lo ? t0 : lo, b = s < hi ? s : hi;
+    long double in = b > a ? b - a : 0, k = s >= lo && s < hi ? LD(p->dense) : 1;
+    int c;
+    for (c = 0; c < 3; ++c) {
+        long double st = LD(p->sigma_a[c]) + LD(p->sigma_s[c]);
+        long double tau = st * ((s - t0) - in + LD(p->dense) * in);
+        out[c] = expl(-tau) * LD(p->sigma_s[c]) * k * LD(p->E[c]) * BENCH_PHASE_L;
+    }
+}
+
+static int slab_split(const void *params, long double out[], int max)
+{
+    const slab_params *p = (const slab_params *)params;
+    if (max < 2) return 0;
+    out[0] = LD(p->lo);
+    out[1] = LD(p->hi);
+    return 2;
+}
+
+static void slab_print(FILE *out, const void *params)
+{
+    const slab_params *p = (const slab_params *)params;
+    fprintf(out, "  callbacks only: outside the slab ");
+    bench_print_vec(out, "sigma_a", p->sigma_a);
+    fprintf(out, ", ");
+    bench_print_vec(out, "sigma_s", p->sigma_s);
+    fprintf(out, "; inside [%g, %g) %g times these\n  Li = E p, ", p->lo, p->hi, p->dense);
+    bench_print_vec(out, "E", p->E);
+    fprintf(out, "\n");
+}
+
 const bench_scene bench_scenes[] = {
     {.name = "directional",
      .description = "homogeneous medium, directional light whose path through the medium grows along the ray",
@@ -1026,6 +1097,33 @@ const bench_scene bench_scenes[] = {
      .natural_warp = BENCH_WARP_EQUIANGULAR, .light = smoke_light, .print_params = smoke_print,
      .build = smoke_build, .transmittance = smoke_tr, .integrand = smoke_integrand,
      .split_points = smoke_split},
+    {.name = "slab",
+     .description = "a dense slab (sigma_t x100) across [4, 5] of a thin medium, from callbacks, sky light",
+     .params = &slab_scene, .t0 = 0.0, .t1 = 10.0, .smooth = 0,
+     .natural_warp = BENCH_WARP_DISTANCE, .print_params = slab_print, .build = slab_build,
+     .integrand = slab_integrand, .split_points = slab_split},
 };
 
 const int bench_scene_count = (int)(sizeof bench_scenes / sizeof bench_scenes[0]);
+
+int bench_scene_breaks(const bench_scene *sc, hrm_real out[2])
+{
+    const occluder_params *p;
+    hrm_real origin[3] = {0, 0, 0}, dir[3] = {1, 0, 0}, light[3], centre[3];
+    int i, n = 0;
+    if (strcmp(sc->name, "slab") == 0) { /* the faces, as a renderer knows them */
+        out[0] = (hrm_real)slab_scene.lo;
+        out[1] = (hrm_real)slab_scene.hi;
+        return 2;
+    }
+    if (strcmp(sc->name, "occluder") != 0) return 0;
+    p = (const occluder_params *)sc->params;
+    light[0] = (hrm_real)p->light.delta;
+    light[1] = (hrm_real)p->light.D;
+    light[2] = 0;
+    for (i = 0; i < 3; ++i) centre[i] = (hrm_real)p->centre[i];
+    if (hrm_sphere_breaks(origin, dir, light, centre, (hrm_real)p->radius, (hrm_real)sc->t0,
+                          (hrm_real)sc->t1, out, &n) != HRM_OK)
+        return 0;
+    return n;
+}
