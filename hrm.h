@@ -1145,6 +1145,8 @@ typedef struct hrm__ctx {
     hrm_real cand_a, cand_b;
     int njumps;
     hrm_real jumps[HRM_MAX_JUMPS]; /* located, as t */
+    int layer_miss, restarts;  /* a node's sigma the layer's panel missed */
+    hrm_real miss_off, miss_s;
     hrm_real w_ua;             /* equiangular: the angle of t0 (pa, which a
                                   piece between breakpoints moves) */
     int noise_only;            /* the last step or interval judged passed on
@@ -1321,6 +1323,7 @@ static hrm_real hrm__uniform(uint64_t *state)
 typedef struct hrm__tpanel {
     hrm_real a, b;          /* offsets from t0 */
     hrm_real tau_a[HRM__CH], tau_b[HRM__CH];
+    hrm_real smax[HRM__CH]; /* the largest sigma_t it sampled */
     int deg;                /* 8 or 16 */
 } hrm__tpanel;
 
@@ -1346,6 +1349,7 @@ typedef struct hrm__tau {
        lost when the panel that saw it is split. */
     int nmem;
     hrm_real mem_x[HRM__TMEM], mem_s[HRM__TMEM][HRM__CH];
+    long hit;               /* the panel of the last hrm__tau_at */
 } hrm__tau;
 
 /* sigma_t at offset off from t0: one medium evaluation. */
@@ -1547,6 +1551,20 @@ static void hrm__tau_remember(hrm__tau *L, hrm_real a, hrm_real b, int n,
     }
 }
 
+/* A sample the layer must reproduce (kept, sorted, while room is left). */
+static void hrm__tau_learn(hrm__tau *L, hrm_real x, const hrm_real s[HRM__CH])
+{
+    int at;
+    if (L->nmem == HRM__TMEM) return;
+    for (at = 0; at < L->nmem && L->mem_x[at] < x; ++at) {}
+    if (at < L->nmem && L->mem_x[at] == x) return;
+    memmove(L->mem_x + at + 1, L->mem_x + at, sizeof(hrm_real) * (size_t)(L->nmem - at));
+    memmove(L->mem_s + at + 1, L->mem_s + at, sizeof L->mem_s[0] * (size_t)(L->nmem - at));
+    L->mem_x[at] = x;
+    memcpy(L->mem_s[at], s, sizeof L->mem_s[0]);
+    L->nmem++;
+}
+
 /* Accept one more panel after the last (the ray's first from t0), its
    coefficients into co. */
 static void hrm__tau_march(hrm__ctx *c, hrm__tau *L, hrm__tcoef *co)
@@ -1600,9 +1618,13 @@ static void hrm__tau_march(hrm__ctx *c, hrm__tau *L, hrm__tcoef *co)
             p->b = b;
             p->deg = n;
             for (i = 0; i < HRM__CH; ++i) {
+                int j;
                 p->tau_a[i] = tau_a[i];
                 p->tau_b[i] = tau_a[i] + dtau[i];
                 L->sig_b[i] = f[i][HRM__CHEB];
+                p->smax[i] = 0;
+                for (j = 0; j <= HRM__CHEB; j += HRM__CHEB / n)
+                    p->smax[i] = f[i][j] > p->smax[i] ? f[i][j] : p->smax[i];
             }
             co->id = id;
             L->count = id + 1;
@@ -1657,6 +1679,7 @@ static void hrm__tau_at(hrm__ctx *c, hrm__tau *L, hrm_real off, hrm_real tau[HRM
         else hi = mid - 1;
     }
     p = &L->tab[lo % HRM_TAU_PANELS];
+    L->hit = lo;
     co = &L->cache[L->last];
     if (co->id != lo) {
         int k;
@@ -2105,8 +2128,22 @@ static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
                                  sa, ss, st);
         if (c->decoupled) {
             hrm_real tau[HRM__CH];
+            const hrm__tpanel *tp;
             hrm__tau_at(c, c->tau, pt->off, tau);
             for (i = 0; i < HRM__CH; ++i) pt->tr[i] = HRM_EXP(-tau[i]);
+            /* sigma_a or sigma_s here above twice every sigma_t the layer's
+               panel sampled: the panel missed something between its nodes
+               (a dense slab); hrm__dispatch samples it there and solves
+               again */
+            tp = &c->tau->tab[c->tau->hit % HRM_TAU_PANELS];
+            for (i = 0; i < HRM__CH && c->tau->count > 0 && !c->layer_miss; ++i) {
+                hrm_real lower = sa[i] > ss[i] ? sa[i] : ss[i];
+                if (lower > 2 * tp->smax[i] + HRM__R(1e-30) && c->restarts < 8) {
+                    c->layer_miss = 1;
+                    c->miss_off = pt->off;
+                    c->miss_s = s;
+                }
+            }
         } else if (c->closed) {
             m->transmittance(m->user, c->t0, s, pt->tr);
             hrm__check(c, pt->tr, 2);
@@ -4120,8 +4157,21 @@ static void hrm__dispatch(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM__NY]
         hrm_real tj, off;
         int k;
         c->jump_found = 0;
+        c->layer_miss = 0;
         hrm__solve_pieces(c, o, y);
-        if (!c->jump_found || c->status != HRM_OK) return;
+        if (c->status != HRM_OK) return;
+        if (c->layer_miss && c->max_evals - c->stats.evals >= c->stats.evals) {
+            /* the layer learns sigma_t there and is built again; the solve
+               is repeated with it (once per miss, 8 at most) */
+            hrm_real st[HRM__CH];
+            c->restarts++;
+            c->warning = w0;
+            hrm__sigma_t_at(c, c->miss_off, 0, st);
+            hrm__tau_init(c->tau, c->off_end, c->tau->tol);
+            hrm__tau_learn(c->tau, c->miss_off, st);
+            continue;
+        }
+        if (!c->jump_found) return;
         c->warning = w0;
         if (c->njumps >= HRM_MAX_JUMPS || c->nbrk >= HRM_MAX_BREAKS || !hrm__locate_jump(c, &tj)) {
             c->find_jumps = 0; /* solve once more without looking */

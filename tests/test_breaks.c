@@ -52,6 +52,30 @@ static void br_slab(void *u, hrm_real t, hrm_real out[NCH])
     for (c = 0; c < NCH; ++c) out[c] = (hrm_real)v;
 }
 
+/* the slab of br_layer_miss: sigma_a 0.01, sigma_s 0.04, 100 times that
+   in [lo, hi); Li = 1 */
+static void br_slab_a(void *u, hrm_real t, hrm_real out[NCH])
+{
+    const br_scene *s = (const br_scene *)u;
+    int c;
+    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)((double)t >= s->lo && (double)t < s->hi ? 1 : 0.01);
+}
+
+static void br_slab_s(void *u, hrm_real t, hrm_real out[NCH])
+{
+    const br_scene *s = (const br_scene *)u;
+    int c;
+    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)((double)t >= s->lo && (double)t < s->hi ? 4 : 0.04);
+}
+
+static void br_one(void *u, hrm_real t, hrm_real out[NCH])
+{
+    int c;
+    (void)u;
+    (void)t;
+    for (c = 0; c < NCH; ++c) out[c] = 1;
+}
+
 /* sigma_s int (1 + 0.3 sin t) exp(-a t) dt, a = 0.5 */
 static double br_F(double t)
 {
@@ -285,6 +309,47 @@ static void br_tau(void)
     hrm_transmittance(&m, 0, 10, &o, Tr, NULL);
     NOTE("slab without breakpoints: Tr relative error %.2g (with: below %.0g)",
          fabs((double)Tr[0] - want) / want, 10 * tol);
+}
+
+/* 4b. A thin dense slab that the transmittance layer's first panel steps
+   over (sigma_t 0.05, 5 in [4, 5), between its nodes 3.09 and 5.0), with no
+   breakpoint: a source node inside the slab sees sigma_s above anything the
+   layer's panel sampled, and the solve is repeated with the layer made to
+   sample there. Dormand-Prince (whose steps put nodes inside) gets Tr =
+   exp(-5.45) within 1e-6 and L within 3 rtol (was 60% low with HRM_OK).
+   Where no node falls inside (nested Simpson's 9 first samples at rtol
+   1e-2) the slab stays unseen: noted. */
+static void br_layer_miss(void)
+{
+    br_scene s = {4, 5, 0};
+    hrm_medium m;
+    double Tr_want, L_want;
+    int c;
+    memset(&m, 0, sizeof m);
+    m.user = &s;
+    m.sigma_a = br_slab_a;
+    m.sigma_s = br_slab_s;
+    m.Li = br_one;
+    Tr_want = exp(-5.45);
+    L_want = 0.8 * (1 - exp(-0.2)) + exp(-0.2) * 0.8 * (1 - exp(-5)) + exp(-5.2) * 0.8 * (1 - exp(-0.25));
+    {
+        hrm_options o = hrm_default_options(HRM_DORMAND_PRINCE);
+        hrm_result r;
+        o.rtol = (hrm_real)1e-4;
+        CHECK_INT(hrm_solve(&m, 0, 10, &o, &r), HRM_OK, "slab, Dormand-Prince: status");
+        for (c = 0; c < NCH; ++c) {
+            CHECK_REL(r.Tr[c], Tr_want, real_is_float() ? 1e-4 : 1e-6, "slab, Dormand-Prince: Tr");
+            CHECK_REL(r.L[c], L_want, 3e-4, "slab, Dormand-Prince: L within 3 rtol");
+        }
+    }
+    {
+        hrm_options o = hrm_default_options(HRM_NESTED_SIMPSON);
+        hrm_result r;
+        o.rtol = (hrm_real)1e-2;
+        hrm_solve(&m, 0, 10, &o, &r);
+        NOTE("slab, nested Simpson at rtol 1e-2 (%ld samples, none inside): L off by %.2g, Tr by %.2g",
+             r.stats.evals, fabs((double)r.L[0] - L_want) / L_want, fabs((double)r.Tr[0] - Tr_want) / Tr_want);
+    }
 }
 
 /* 5. The adaptive methods with the shadow's edges as breakpoints: within
@@ -591,6 +656,7 @@ void breaks_tests(void)
     RUN_GROUP(br_order);
     RUN_GROUP(br_ab4);
     RUN_GROUP(br_tau);
+    RUN_GROUP(br_layer_miss);
     RUN_GROUP(br_adaptive);
     RUN_GROUP(br_budget);
     RUN_GROUP(br_monte_carlo);
