@@ -2084,13 +2084,14 @@ static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
 {
     const hrm_medium *m = c->m;
     hrm_real sa[HRM__CH], ss[HRM__CH], st[HRM__CH], v[HRM__CH], q[HRM__CH];
-    hrm_real J, s, sig[HRM__CH], vmax[HRM__CH];
+    hrm_real J, s, s_raw, sig[HRM__CH], vmax[HRM__CH];
     int i, em = 0, sc = 0, sig_known;
 
     hrm__map(c, p, &pt->off, &J);
     pt->p = p;
     pt->J = J;
-    s = hrm__side(c, hrm__abscissa(c, pt->off));
+    s_raw = hrm__abscissa(c, pt->off);
+    s = hrm__side(c, s_raw);
     if (c->use_memo) {
         int k, hit;
         for (k = 0; k < c->nmemo && c->memo[k].s != s; ++k) {}
@@ -2136,7 +2137,8 @@ static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
                (a dense slab); hrm__dispatch samples it there and solves
                again */
             tp = &c->tau->tab[c->tau->hit % HRM_TAU_PANELS];
-            for (i = 0; i < HRM__CH && c->tau->count > 0 && !c->layer_miss; ++i) {
+            /* (not at a breakpoint, whose sample is on the other panel's side) */
+            for (i = 0; i < HRM__CH && c->tau->count > 0 && !c->layer_miss && s == s_raw; ++i) {
                 hrm_real lower = sa[i] > ss[i] ? sa[i] : ss[i];
                 if (lower > 2 * tp->smax[i] + HRM__R(1e-30) && c->restarts < 8) {
                     c->layer_miss = 1;

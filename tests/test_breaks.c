@@ -343,6 +343,21 @@ static void br_layer_miss(void)
         }
     }
     {
+        /* with its faces as breakpoints nothing is missed and nothing is
+           solved twice: Simpson's 2N + 1 samples plus one per breakpoint
+           (a sample at a face belongs to one piece, not to the layer's
+           panel on the other side) */
+        hrm_options o = hrm_default_options(HRM_SIMPSON);
+        hrm_real faces[2] = {4, 5};
+        hrm_result r;
+        o.steps = 32;
+        o.breaks = faces;
+        o.nbreaks = 2;
+        CHECK_INT(hrm_solve(&m, 0, 10, &o, &r), HRM_OK, "slab with breakpoints: status");
+        CHECK_INT(r.stats.evals, 2 * 32 + 3, "slab with breakpoints, Simpson N = 32: evaluations");
+        CHECK_REL(r.L[0], L_want, 3e-3, "slab with breakpoints, Simpson N = 32: L (measured 2e-3)");
+    }
+    {
         hrm_options o = hrm_default_options(HRM_NESTED_SIMPSON);
         hrm_result r;
         o.rtol = (hrm_real)1e-2;
