@@ -596,8 +596,9 @@ static void br_sphere(void)
 
 /* 8. Jumps found automatically (no breakpoint given): nested Simpson and
    global Gauss-Kronrod, on the shadow scene at rtol 1e-4..1e-8, both
-   medium paths. Both edges are located to within 8 ulps of t (the
-   bisection stops at 4) and reported in result.jumps; the answer is
+   medium paths. Where the search pays, both edges are located to within
+   8 ulps of t (the bisection stops at 4) and reported in result.jumps;
+   the answer is
    within 3 rtol; the evaluations with and without the search are noted.
    On the same scene without its shadow nothing is found. Under any budget
    from the method's minimum to 400, evaluations stay within it. */
@@ -618,8 +619,16 @@ static void br_jumps(void)
                 o.rtol = (hrm_real)rtol;
                 st = hrm_solve(&m, 0, 10, &o, &r);
                 CHECK_INT(st, HRM_OK, "%s, rtol %g: status", hrm_method_name(ms[mi]), rtol);
-                CHECK_INT(r.njumps, 2, "%s, %s, rtol %g: jumps found", hrm_method_name(ms[mi]),
-                          cb ? "sigma callbacks" : "constants", rtol);
+                /* nested Simpson refines across an edge for 4 samples a
+                   split: the search pays only where that takes more than
+                   its 64 (here from rtol 1e-8); Gauss-Kronrod's 30 a
+                   split make it pay from rtol 1e-4 */
+                if (ms[mi] == HRM_GAUSS_KRONROD || rtol <= 1e-8)
+                    CHECK_INT(r.njumps, 2, "%s, %s, rtol %g: jumps found", hrm_method_name(ms[mi]),
+                              cb ? "sigma callbacks" : "constants", rtol);
+                else
+                    CHECK(r.njumps == 0 || r.njumps == 2, "%s, rtol %g: %d jumps", hrm_method_name(ms[mi]),
+                          rtol, r.njumps);
                 for (j = 0; j < r.njumps && j < 2; ++j) {
                     double edge = j ? s.hi : s.lo, e = fabs((double)r.jumps[j] - edge) / (real_eps() * edge);
                     loc = e > loc ? e : loc;
