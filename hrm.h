@@ -1529,6 +1529,20 @@ static void hrm__tau_init(hrm__tau *L, hrm_real end, hrm_real tol)
     hrm__forget(L);
 }
 
+/* A sample the layer must reproduce (kept, sorted, while room is left). */
+static void hrm__tau_learn(hrm__tau *L, hrm_real x, const hrm_real s[HRM__CH])
+{
+    int at;
+    if (L->nmem == HRM__TMEM) return;
+    for (at = 0; at < L->nmem && L->mem_x[at] < x; ++at) {}
+    if (at < L->nmem && L->mem_x[at] == x) return;
+    memmove(L->mem_x + at + 1, L->mem_x + at, sizeof(hrm_real) * (size_t)(L->nmem - at));
+    memmove(L->mem_s + at + 1, L->mem_s + at, sizeof L->mem_s[0] * (size_t)(L->nmem - at));
+    L->mem_x[at] = x;
+    memcpy(L->mem_s[at], s, sizeof L->mem_s[0]);
+    L->nmem++;
+}
+
 /* Remember the largest and the smallest sigma_t (summed over channels)
    that a rejected panel [a, b] sampled inside it: a thin layer or a hole
    it saw. */
@@ -1544,33 +1558,13 @@ static void hrm__tau_remember(hrm__tau *L, hrm_real a, hrm_real b, int n,
         if (pick[1] < 0 || sum < lo) { lo = sum; pick[1] = j; }
     }
     for (k = 0; k < 2; ++k) {
-        hrm_real x;
-        int at;
-        if (pick[k] < 0 || (k == 1 && pick[1] == pick[0]) || L->nmem == HRM__TMEM) continue;
-        x = hrm__cheb_at(a, b, pick[k]);
-        for (at = 0; at < L->nmem && L->mem_x[at] < x; ++at) {}
-        if (at < L->nmem && L->mem_x[at] == x) continue;
-        memmove(L->mem_x + at + 1, L->mem_x + at, sizeof(hrm_real) * (size_t)(L->nmem - at));
-        memmove(L->mem_s + at + 1, L->mem_s + at, sizeof L->mem_s[0] * (size_t)(L->nmem - at));
-        L->mem_x[at] = x;
-        for (i = 0; i < HRM__CH; ++i) L->mem_s[at][i] = f[i][pick[k]];
-        L->nmem++;
+        hrm_real s[HRM__CH];
+        if (pick[k] < 0 || (k == 1 && pick[1] == pick[0])) continue;
+        for (i = 0; i < HRM__CH; ++i) s[i] = f[i][pick[k]];
+        hrm__tau_learn(L, hrm__cheb_at(a, b, pick[k]), s);
     }
 }
 
-/* A sample the layer must reproduce (kept, sorted, while room is left). */
-static void hrm__tau_learn(hrm__tau *L, hrm_real x, const hrm_real s[HRM__CH])
-{
-    int at;
-    if (L->nmem == HRM__TMEM) return;
-    for (at = 0; at < L->nmem && L->mem_x[at] < x; ++at) {}
-    if (at < L->nmem && L->mem_x[at] == x) return;
-    memmove(L->mem_x + at + 1, L->mem_x + at, sizeof(hrm_real) * (size_t)(L->nmem - at));
-    memmove(L->mem_s + at + 1, L->mem_s + at, sizeof L->mem_s[0] * (size_t)(L->nmem - at));
-    L->mem_x[at] = x;
-    memcpy(L->mem_s[at], s, sizeof L->mem_s[0]);
-    L->nmem++;
-}
 
 /* Accept one more panel after the last (the ray's first from t0), its
    coefficients into co. */
@@ -2147,7 +2141,7 @@ static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
             /* (not at a breakpoint, whose sample is on the other panel's side) */
             for (i = 0; i < HRM__CH && c->tau->count > 0 && !c->layer_miss && s == s_raw; ++i) {
                 hrm_real lower = sa[i] > ss[i] ? sa[i] : ss[i];
-                if (lower > 2 * tp->smax[i] + HRM__R(1e-30) && c->restarts < 8) {
+                if (lower > 2 * tp->smax[i] + HRM__R(1e-30)) {
                     c->layer_miss = 1;
                     c->miss_off = pt->off;
                     c->miss_s = s;
@@ -4180,7 +4174,13 @@ static void hrm__dispatch(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM__NY]
         c->layer_miss = 0;
         hrm__solve_pieces(c, o, y);
         if (c->status != HRM_OK) return;
-        if (c->layer_miss && c->max_evals - c->stats.evals >= c->stats.evals) {
+        if (c->layer_miss && (c->restarts >= 8 || c->max_evals - c->stats.evals < c->stats.evals)) {
+            /* no budget or no tries left to repair it: the answer's tau
+               is known to miss something, which HRM_OK must not hide */
+            hrm__warn(c, HRM_WARN_TOLERANCE);
+            return;
+        }
+        if (c->layer_miss) {
             /* the layer learns sigma_t there and is built again; the solve
                is repeated with it (once per miss, 8 at most) */
             hrm_real st[HRM__CH];

@@ -190,44 +190,42 @@ static void poison_out(const scene *sc, int which, hrm_real out[NCH])
     if (sc->poison == which) out[NCH - 1] = (hrm_real)sc->poison_value;
 }
 
+/* The heterogeneous coefficients: frac(c) sigma_t_het, counted in *count,
+   poisoned where the scene says so. */
+static void het_out(scene *sc, hrm_real t, hrm_real out[NCH], long *count, int which, int part)
+{
+    int c;
+    (*count)++;
+    touch(sc, t);
+    for (c = 0; c < NCH; ++c) {
+        double f = part == 0 ? sc->pa[c] : part == 1 ? 1.0 - sc->pa[c] : 1.0;
+        out[c] = (hrm_real)(f * sig_t_het(sc, c, (double)t));
+    }
+    poison_out(sc, which, out);
+}
+
 void het_sigma_a(void *user, hrm_real t, hrm_real out[NCH])
 {
     scene *sc = (scene *)user;
-    int c;
-    sc->n_sa++;
-    touch(sc, t);
-    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)(sc->pa[c] * sig_t_het(sc, c, (double)t));
-    poison_out(sc, POISON_SA, out);
+    het_out(sc, t, out, &sc->n_sa, POISON_SA, 0);
 }
 
 void het_sigma_s(void *user, hrm_real t, hrm_real out[NCH])
 {
     scene *sc = (scene *)user;
-    int c;
-    sc->n_ss++;
-    touch(sc, t);
-    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)((1.0 - sc->pa[c]) * sig_t_het(sc, c, (double)t));
-    poison_out(sc, POISON_SS, out);
+    het_out(sc, t, out, &sc->n_ss, POISON_SS, 1);
 }
 
 void het_sigma_t(void *user, hrm_real t, hrm_real out[NCH])
 {
     scene *sc = (scene *)user;
-    int c;
-    sc->n_st++;
-    touch(sc, t);
-    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)sig_t_het(sc, c, (double)t);
-    poison_out(sc, POISON_ST, out);
+    het_out(sc, t, out, &sc->n_st, POISON_ST, 2);
 }
 
 void het_absorber(void *user, hrm_real t, hrm_real out[NCH])
 {
     scene *sc = (scene *)user;
-    int c;
-    sc->n_sa++;
-    touch(sc, t);
-    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)sig_t_het(sc, c, (double)t);
-    poison_out(sc, POISON_SA, out);
+    het_out(sc, t, out, &sc->n_sa, POISON_SA, 2);
 }
 
 void het_transmittance(void *user, hrm_real ta, hrm_real tb, hrm_real out[NCH])

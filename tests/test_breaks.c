@@ -343,6 +343,24 @@ static void br_layer_miss(void)
         }
     }
     {
+        /* under any budget from 40 to 600 the slab is either resolved or
+           the answer carries a warning, never HRM_OK with the slab unseen
+           (measured: every such budget warns HRM_WARN_MAX_EVALS, the
+           pair's own budget guard, before the layer's repair could fail
+           for want of budget; that case returns HRM_WARN_TOLERANCE) */
+        long budget, silent = 0;
+        for (budget = 40; budget <= 600; budget += 20) {
+            hrm_options o = hrm_default_options(HRM_DORMAND_PRINCE);
+            hrm_result r;
+            hrm_status st;
+            o.rtol = (hrm_real)1e-4;
+            o.max_evals = budget;
+            st = hrm_solve(&m, 0, 10, &o, &r);
+            silent += st == HRM_OK && fabs((double)r.L[0] - L_want) > 3e-4 * L_want;
+        }
+        CHECK_INT(silent, 0, "slab, Dormand-Prince, budgets 40..600: HRM_OK only within 3 rtol");
+    }
+    {
         /* with its faces as breakpoints nothing is missed and nothing is
            solved twice: Simpson's 2N + 1 samples plus one per breakpoint
            (a sample at a face belongs to one piece, not to the layer's
@@ -644,6 +662,26 @@ static void br_jumps(void)
                          hrm_method_name(ms[mi]), rtol, r.stats.evals, br_rel(&r, br_exact(&s)),
                          plain.stats.evals, br_rel(&plain, br_exact(&s)));
             }
+    {
+        /* under a warp, with sigma callbacks: the edges found in u, as t */
+        br_scene s = {3.3, 6.1, 0};
+        hrm_medium m = br_medium(&s, 1);
+        hrm_options o = hrm_default_options(HRM_GAUSS_KRONROD);
+        hrm_result r;
+        int j;
+        double loc = 0;
+        o.rtol = (hrm_real)(real_is_float() ? 1e-4 : 1e-6);
+        o.warp.kind = HRM_WARP_DISTANCE;
+        CHECK_INT(hrm_solve(&m, 0, 10, &o, &r), HRM_OK, "distance warp: status");
+        CHECK_INT(r.njumps, 2, "distance warp, sigma callbacks: jumps found");
+        for (j = 0; j < r.njumps && j < 2; ++j) {
+            double edge = j ? s.hi : s.lo, e = fabs((double)r.jumps[j] - edge) / (real_eps() * edge);
+            loc = e > loc ? e : loc;
+        }
+        CHECK(loc <= 8, "distance warp: jumps within %.1f ulps of the edges", loc);
+        CHECK(br_rel(&r, br_exact(&s)) <= 3 * (double)o.rtol, "distance warp: error %.3g <= 3 rtol",
+              br_rel(&r, br_exact(&s)));
+    }
     for (mi = 0; mi < 2; ++mi) {
         br_scene s = {20, 21, 0}; /* the shadow beyond the ray: smooth */
         hrm_medium m = br_medium(&s, 1);
