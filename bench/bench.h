@@ -169,12 +169,17 @@ typedef struct bench_trans {
    1e-4, 1e-6 (-1: not reached), [0] without breakpoints or the jump
    search, [1] with the exact breakpoints (the occluder's from
    hrm_sphere_breaks, the slab's faces), [2] with the jump search alone
-   (the default of nested Simpson and global Gauss-Kronrod). */
+   (find_jumps = 1: the medium scan in every method, the source's search
+   in nested Simpson and global Gauss-Kronrod). */
 #define BENCH_BRK_ROWS (BENCH_MAX_METHODS * 4)
 #define BENCH_BRK_SCENES 2
 typedef struct bench_brk_row {
     int method, warp, medium;
     long fewest[3][3];
+    int np;                            /* the sweep of each way, for fig4.svg */
+    double param[BENCH_MAX_PARAMS];
+    long evals[3][BENCH_MAX_PARAMS];
+    double err[3][BENCH_MAX_PARAMS];   /* NaN: error status */
 } bench_brk_row;
 
 typedef struct bench_brk {

@@ -4,7 +4,10 @@
                  the adaptive methods rtol vs error and rtol vs evaluations
    fig4.svg      Munoz 2014 Fig. 4's scenes (medium as constants), one row
                  each: error vs evaluations without and with the natural
-                 warp, rtol vs error, rtol vs evaluations
+                 warp, rtol vs error, rtol vs evaluations; the occluder has a
+                 second row with its natural warp: without breakpoints or the
+                 jump search, with the exact breakpoints, with the search
+                 alone, and rtol vs error with the breakpoints
    time.svg      (timed runs) error vs time per ray, one row per scene and
                  medium, one column per warp: the only figure with
                  machine-dependent numbers, kept apart so the others are the
@@ -47,14 +50,59 @@ typedef struct bench_cell {
     bench_medium_id medium;
     int xa, ya;
     int adaptive_only; /* 1: only the methods swept over rtol; 2: an empty cell */
+    int way;           /* -1: the scene's sweeps; 0..2: the breakpoint section's way */
     char title[128];
 } bench_cell;
+
+/* An axis value of point k of a breakpoint section's sweep (way w). */
+static double bench_brk_value(const bench_brk_row *r, int w, int k, int axis)
+{
+    double e = r->err[w][k];
+    switch (axis) {
+    case BENCH_AX_EVALS: return (double)r->evals[w][k];
+    case BENCH_AX_RTOL: return r->param[k];
+    case BENCH_AX_ERROR:
+        if (!bench_finite(e)) return (double)NAN;
+        return e > BENCH_PLOT_FLOOR ? e : BENCH_PLOT_FLOOR;
+    default: return (double)NAN; /* not timed */
+    }
+}
+
+/* The series of a cell drawn from the breakpoint section: one per method
+   measured there with the cell's warp and medium. */
+static int bench_brk_series(const bench_state *st, const bench_cell *c, svg_series *out)
+{
+    int bi, i, n = 0, k;
+    for (bi = 0; bi < BENCH_BRK_SCENES; ++bi) {
+        const bench_brk *b = &st->brk[bi];
+        if (b->scene != c->scene) continue;
+        for (i = 0; i < b->n && n < BENCH_MAX_METHODS; ++i) {
+            const bench_brk_row *r = &b->rows[i];
+            const bench_method *me = &st->methods[r->method];
+            svg_series *s;
+            if (r->warp != (int)c->warp || r->medium != (int)c->medium) continue;
+            if (c->adaptive_only && me->kind != BENCH_ADAPTIVE) continue;
+            s = &out[n++];
+            s->label = me->name;
+            s->color = me->color;
+            s->dashed = me->kind == BENCH_ADAPTIVE;
+            s->marker = me->marker;
+            s->n = r->np < SVG_MAX_POINTS ? r->np : SVG_MAX_POINTS;
+            for (k = 0; k < s->n; ++k) {
+                s->x[k] = bench_brk_value(r, c->way, k, c->xa);
+                s->y[k] = bench_brk_value(r, c->way, k, c->ya);
+            }
+        }
+    }
+    return n;
+}
 
 /* One series per method of the cell's sweeps. */
 static int bench_series(const bench_state *st, const bench_cell *c, svg_series *out)
 {
     int mi, n = 0, k;
     if (c->adaptive_only == 2) return 0;
+    if (c->way >= 0) return bench_brk_series(st, c, out);
     for (mi = 0; mi < st->nmethods; ++mi) {
         const bench_method *me = &st->methods[mi];
         const bench_sweep *sw = bench_find_sweep(st, c->scene, mi, c->warp, c->medium);
@@ -188,6 +236,7 @@ static void bench_add_cell(const bench_state *st, bench_cell *cells, int *n, int
     c->xa = xa;
     c->ya = ya;
     c->adaptive_only = adaptive_only;
+    c->way = -1;
     for (k = 0; k < BENCH_MEDIUM_COUNT; ++k) /* name the medium where the scene has two */
         two += (int)md != k && (bench_has_kind(st, si, w, (bench_medium_id)k, 0) ||
                                 bench_has_kind(st, si, w, (bench_medium_id)k, 1));
@@ -212,6 +261,24 @@ static int bench_pad_rows(bench_cell *cells, int n, int ncols)
     }
     memcpy(cells, grid, (size_t)g * sizeof grid[0]);
     return g;
+}
+
+/* The occluder's second row in fig4.svg: the three ways of the breakpoint
+   section (none, the exact breakpoints, the jump search alone) with the
+   natural warp, then rtol vs error with the breakpoints. */
+static void bench_add_brk_row(const bench_state *st, bench_cell *cells, int *n, int si,
+                              bench_warp_id w)
+{
+    static const char *const what[3] = {"no breakpoints, no search", "with breakpoints",
+                                        "jump search alone"};
+    int bi, way, any = 0;
+    for (bi = 0; bi < BENCH_BRK_SCENES; ++bi) any |= st->brk[bi].scene == si;
+    if (!any) return;
+    for (way = 0; way < 4 && *n < BENCH_MAX_CELLS; ++way) {
+        bench_add_cell(st, cells, n, si, w, BENCH_MEDIUM_CONST, way < 3 ? BENCH_AX_EVALS : BENCH_AX_RTOL,
+                       BENCH_AX_ERROR, way == 3, way < 3 ? what[way] : "rtol vs error, breakpoints");
+        cells[*n - 1].way = way < 3 ? way : 1;
+    }
 }
 
 int bench_write_figures(const bench_state *st, const char *dir, int *files)
@@ -267,12 +334,14 @@ int bench_write_figures(const bench_state *st, const char *dir, int *files)
                        BENCH_AX_ERROR, 1, "rtol vs error");
         bench_add_cell(st, cells, &n, si, BENCH_WARP_NONE, BENCH_MEDIUM_CONST, BENCH_AX_RTOL,
                        BENCH_AX_EVALS, 1, "rtol vs evaluations");
+        if (!strcmp(nm, "occluder")) bench_add_brk_row(st, cells, &n, si, nat);
     }
     if (n) {
         bad |= bench_write_figure(st, dir, "fig4.svg",
                                   "hrm.h after Munoz 2014 Fig. 4: directional, point and occluded "
                                   "point light; without and with importance sampling; tolerance "
-                                  "vs error and evaluations",
+                                  "vs error and evaluations; the occluder without and with "
+                                  "breakpoints and with the jump search",
                                   cells, n, 4);
         ++*files;
     }

@@ -805,16 +805,18 @@ void bench_measure_breaks(bench_state *st)
                     r->warp = warp;
                     r->medium = mids[j];
                     bench_medium_build(sc, mids[j], &m, &calls);
+                    r->np = np;
+                    for (k = 0; k < np; ++k) r->param[k] = params[k];
                     for (way = 0; way < 3; ++way) {
-                        long ev[BENCH_MAX_PARAMS];
-                        double er[BENCH_MAX_PARAMS];
+                        long *ev = r->evals[way];
+                        double *er = r->err[way];
                         for (k = 0; k < np; ++k) {
                             bench_row row;
                             er[k] = bench_section_solve_breaks(st, si, me, warp, params[k], &m, &calls,
                                                                HRM_TAU_DEFAULT, bench_medium_names[mids[j]],
                                                                way == 1 ? br : NULL,
                                                                way == 1 ? b->nbreaks : 0,
-                                                               way == 0 ? -1 : 0, &row);
+                                                               way == 0 ? -1 : way == 1 ? 0 : 1, &row);
                             ev[k] = row.stats.evals;
                         }
                         bench_brk_fewest(ev, er, np, r->fewest[way]);

@@ -647,9 +647,10 @@ static void bench_report_breaks(const bench_state *st, const bench_out *o)
     bench_both(o, "The fewest evaluations from which a sweep stays within a relative error of 1e-2 / "
                   "1e-4 / 1e-6 (- : not reached in the sweep): without breakpoints or the jump "
                   "search (find_jumps = -1), with options.breaks set to the scene's jumps, and with "
-                  "the jump search alone (the default of nested Simpson and global Gauss-Kronrod; "
-                  "the other methods are as without). Fixed-step methods over N, adaptive ones over "
-                  "rtol.\n\n");
+                  "the jump search alone (find_jumps = 1: every method scans the medium for jumps, "
+                  "nested Simpson and global Gauss-Kronrod also search the source; the default, 0, "
+                  "is the same except that fixed-step methods do not scan). Fixed-step methods over "
+                  "N, adaptive ones over rtol.\n\n");
     for (bi = 0; bi < BENCH_BRK_SCENES; ++bi) {
         const bench_brk *b = &st->brk[bi];
         bench_table t;

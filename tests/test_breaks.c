@@ -68,6 +68,24 @@ static void br_slab_s(void *u, hrm_real t, hrm_real out[NCH])
     for (c = 0; c < NCH; ++c) out[c] = (hrm_real)((double)t >= s->lo && (double)t < s->hi ? 4 : 0.04);
 }
 
+/* a steep smooth edge: sigma_t 0.05 + 4.95 (1 + tanh((t - 4.5) / 0.05)) / 2,
+   albedo 0.8 */
+static void br_edge_a(void *u, hrm_real t, hrm_real out[NCH])
+{
+    double v = 0.2 * (0.05 + 4.95 * (1 + tanh(((double)t - 4.5) / 0.05)) / 2);
+    int c;
+    (void)u;
+    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)v;
+}
+
+static void br_edge_s(void *u, hrm_real t, hrm_real out[NCH])
+{
+    double v = 0.8 * (0.05 + 4.95 * (1 + tanh(((double)t - 4.5) / 0.05)) / 2);
+    int c;
+    (void)u;
+    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)v;
+}
+
 static void br_one(void *u, hrm_real t, hrm_real out[NCH])
 {
     int c;
@@ -376,12 +394,144 @@ static void br_layer_miss(void)
         CHECK_REL(r.L[0], L_want, 3e-3, "slab with breakpoints, Simpson N = 32: L (measured 2e-3)");
     }
     {
+        /* nested Simpson at rtol 1e-2 puts none of its 9 first samples in
+           the slab; without the medium scan it was 60% low with HRM_OK
+           (kept as a note), with it the faces are breakpoints */
         hrm_options o = hrm_default_options(HRM_NESTED_SIMPSON);
         hrm_result r;
         o.rtol = (hrm_real)1e-2;
+        CHECK_INT(hrm_solve(&m, 0, 10, &o, &r), HRM_OK, "slab, nested Simpson rtol 1e-2: status");
+        CHECK_REL(r.L[0], L_want, 3e-2, "slab, nested Simpson rtol 1e-2: L within 3 rtol");
+        o.find_jumps = -1;
         hrm_solve(&m, 0, 10, &o, &r);
-        NOTE("slab, nested Simpson at rtol 1e-2 (%ld samples, none inside): L off by %.2g, Tr by %.2g",
+        NOTE("slab, nested Simpson at rtol 1e-2 without the scan (%ld samples, none inside): L off by "
+             "%.2g, Tr by %.2g",
              r.stats.evals, fabs((double)r.L[0] - L_want) / L_want, fabs((double)r.Tr[0] - Tr_want) / Tr_want);
+    }
+}
+
+/* 4c. The medium scan (find_jumps 0, the default of every adaptive
+   method; 1 for fixed-step ones). A slab (sigma_t 0.05, 5 in [lo, hi),
+   albedo 0.8, Li = 1) of three widths, one face on the scan's grid (4),
+   none on it, and 0.37 wide (wider than the grid's 10/32 = 0.3125, so a
+   grid point falls inside). L and Tr have closed forms. Every adaptive
+   method, no warp, the distance warp and an equiangular warp: the two
+   faces reported within 8 ulps (the bisection stops at 4), L within 3
+   rtol with HRM_OK (each piece is smooth: the bound of the tolerance
+   issue), Tr within 1e-6 (1e-4 in float: the layer's tau_tol). */
+static double br_slab_L(double lo, double hi)
+{
+    double a = 0.05 * lo, b = a + 5 * (hi - lo);
+    return 0.8 * (1 - exp(-a)) + exp(-a) * 0.8 * (1 - exp(-(b - a))) +
+           exp(-b) * 0.8 * (1 - exp(-0.05 * (10 - hi)));
+}
+
+static void br_scan(void)
+{
+    static const hrm_method ms[] = {HRM_NESTED_SIMPSON, HRM_GAUSS_KRONROD, HRM_BOGACKI_SHAMPINE,
+                                    HRM_DORMAND_PRINCE, HRM_FEHLBERG, HRM_CASH_KARP, HRM_VERNER};
+    static const double slabs[3][2] = {{4, 5}, {4.1, 4.9}, {4.05, 4.42}};
+    double rtol = real_is_float() ? 1e-3 : 1e-5, tr_tol = real_is_float() ? 1e-4 : 1e-6;
+    int mi, si, w, gk, c;
+    for (si = 0; si < 3; ++si)
+        for (mi = 0; mi < 7; ++mi)
+            for (gk = 0; gk < (ms[mi] == HRM_GAUSS_KRONROD ? 3 : 1); ++gk)
+                for (w = 0; w < 3; ++w) {
+                    br_scene s;
+                    hrm_medium m;
+                    hrm_options o = hrm_default_options(ms[mi]);
+                    hrm_result r;
+                    double L_want, Tr_want, loc = 0;
+                    const char *name = gk == 1 ? "gauss-kronrod K7" : gk == 2 ? "gauss-kronrod local"
+                                                                            : hrm_method_name(ms[mi]);
+                    int j;
+                    s.lo = slabs[si][0];
+                    s.hi = slabs[si][1];
+                    s.calls = 0;
+                    L_want = br_slab_L(s.lo, s.hi);
+                    Tr_want = exp(-(0.05 * (10 - (s.hi - s.lo)) + 5 * (s.hi - s.lo)));
+                    memset(&m, 0, sizeof m);
+                    m.user = &s;
+                    m.sigma_a = br_slab_a;
+                    m.sigma_s = br_slab_s;
+                    m.Li = br_one;
+                    o.rtol = (hrm_real)rtol;
+                    if (gk == 1) o.gk_rule = HRM_GK_K7;
+                    if (gk == 2) o.gk_mode = HRM_GK_LOCAL;
+                    if (w == 1) o.warp.kind = HRM_WARP_DISTANCE;
+                    if (w == 2) {
+                        o.warp.kind = HRM_WARP_EQUIANGULAR;
+                        o.warp.delta = (hrm_real)7;
+                        o.warp.D = (hrm_real)0.5;
+                    }
+                    CHECK_INT(hrm_solve(&m, 0, 10, &o, &r), HRM_OK, "slab [%g, %g], %s, warp %d: status",
+                              s.lo, s.hi, name, w);
+                    CHECK_INT(r.njumps, 2, "slab [%g, %g], %s, warp %d: both faces found", s.lo, s.hi,
+                              name, w);
+                    for (j = 0; j < r.njumps && j < 2; ++j) {
+                        double face = j ? s.hi : s.lo;
+                        double e = fabs((double)r.jumps[j] - face) / (real_eps() * face);
+                        loc = e > loc ? e : loc;
+                    }
+                    CHECK(loc <= 8, "slab [%g, %g], %s: faces within %.1f ulps", s.lo, s.hi, name, loc);
+                    for (c = 0; c < NCH; ++c) {
+                        CHECK_REL(r.L[c], L_want, 3 * rtol, "slab [%g, %g], %s, warp %d: L within 3 rtol",
+                                  s.lo, s.hi, name, w);
+                        CHECK_REL(r.Tr[c], Tr_want, tr_tol, "slab [%g, %g], %s, warp %d: Tr", s.lo, s.hi,
+                                  name, w);
+                    }
+                }
+    {
+        /* fixed-step methods scan only when asked: then Simpson N = 32 is
+           Simpson with the faces as breakpoints (2N + 3 samples, measured
+           error 2e-3); by default the medium costs one call per abscissa */
+        br_scene s = {4.1, 4.9, 0};
+        hrm_medium m;
+        hrm_options o = hrm_default_options(HRM_SIMPSON);
+        hrm_result r, plain;
+        hrm_real Tr[NCH];
+        memset(&m, 0, sizeof m);
+        m.user = &s;
+        m.sigma_a = br_slab_a;
+        m.sigma_s = br_slab_s;
+        m.Li = br_one;
+        o.steps = 32;
+        hrm_solve(&m, 0, 10, &o, &r);
+        CHECK_INT(r.njumps, 0, "Simpson, find_jumps 0: no scan");
+        o.find_jumps = -1;
+        hrm_solve(&m, 0, 10, &o, &plain);
+        CHECK_INT(r.stats.medium_evals, plain.stats.medium_evals,
+                  "Simpson, find_jumps 0: medium calls as with -1 (no scan)");
+        o.find_jumps = 1;
+        CHECK_INT(hrm_solve(&m, 0, 10, &o, &r), HRM_OK, "Simpson, find_jumps 1: status");
+        CHECK_INT(r.njumps, 2, "Simpson, find_jumps 1: both faces found");
+        CHECK_INT(r.stats.evals, 2 * 32 + 3, "Simpson, find_jumps 1: 2N + 1 samples, one more per face");
+        CHECK_REL(r.L[0], br_slab_L(s.lo, s.hi), 3e-3, "Simpson N = 32, find_jumps 1: L (measured 2e-3)");
+        /* hrm_transmittance: the layer's panels end at the faces found */
+        o.tau_tol = (hrm_real)tr_tol;
+        CHECK_INT(hrm_transmittance(&m, 0, 10, &o, Tr, NULL), HRM_OK, "hrm_transmittance, scan: status");
+        CHECK_REL(Tr[0], exp(-(0.05 * 9.2 + 5 * 0.8)), 10 * tr_tol, "hrm_transmittance, scan: Tr");
+    }
+    {
+        /* a steep but smooth edge (sigma_t from 0.05 to 5 over about 0.05)
+           is no jump: the bisection sees its change split between halves
+           and stops; nothing is reported and L keeps its bound */
+        hrm_medium m;
+        hrm_options o = hrm_default_options(HRM_GAUSS_KRONROD);
+        hrm_result r, off;
+        memset(&m, 0, sizeof m);
+        m.sigma_a = br_edge_a;
+        m.sigma_s = br_edge_s;
+        m.Li = br_one;
+        o.rtol = (hrm_real)rtol;
+        CHECK_INT(hrm_solve(&m, 0, 10, &o, &r), HRM_OK, "smooth edge: status");
+        CHECK_INT(r.njumps, 0, "smooth edge: no jump reported");
+        o.find_jumps = -1;
+        hrm_solve(&m, 0, 10, &o, &off);
+        CHECK(r.stats.medium_evals - off.stats.medium_evals <= 33 + 3 * 16,
+              "smooth edge: the scan costs %ld medium calls (at most 33 + 3 per halving)",
+              r.stats.medium_evals - off.stats.medium_evals);
+        CHECK_REL(r.L[0], off.L[0], 3 * rtol, "smooth edge: L with and without the scan agree");
     }
 }
 
@@ -709,6 +859,8 @@ static void br_jumps(void)
         hrm_result r;
         o.find_jumps = 2;
         CHECK_INT(hrm_solve(&m, 0, 10, &o, &r), HRM_ERR_BAD_OPTION, "find_jumps 2: bad option");
+        o.find_jumps = -2;
+        CHECK_INT(hrm_solve(&m, 0, 10, &o, &r), HRM_ERR_BAD_OPTION, "find_jumps -2: bad option");
     }
 }
 
@@ -719,6 +871,7 @@ void breaks_tests(void)
     RUN_GROUP(br_ab4);
     RUN_GROUP(br_tau);
     RUN_GROUP(br_layer_miss);
+    RUN_GROUP(br_scan);
     RUN_GROUP(br_adaptive);
     RUN_GROUP(br_budget);
     RUN_GROUP(br_monte_carlo);
