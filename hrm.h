@@ -140,6 +140,21 @@
                                                    shared by two stages)
    HRM_ADAMS_BASHFORTH  4      N + 3 (N >= 4)      4-step, started with 3 RK4
                                                    steps; 1 new per step
+   HRM_ANALYTIC_MARCH   2      N                   what renderers ship
+                        (1)                        (Hillaire 2015): the source
+                                                   constant over each step at
+                                                   its midpoint (jitter: one
+                                                   random offset per ray),
+                                                   the extinction integrated
+                                                   exactly in t, sigma_t
+                                                   taken at the sample (tau
+                                                   coupled, its default).
+                                                   Exact for a constant
+                                                   S / sigma_t at any N,
+                                                   0 <= L <= sup(S/sigma_t)
+                                                   (1 - Tr) however thick.
+                                                   A warp places its steps;
+                                                   it is not exact in u
    Adaptive (rtol, atol, h_min, h_max, max_evals; see TOLERANCES):
    HRM_NESTED_SIMPSON   6      2 per interval      Simpson on the halves vs
                                                    on the whole (Lyness), the
@@ -533,7 +548,8 @@ typedef enum hrm_status {
     X(HRM_DORMAND_PRINCE, "dormand-prince", HRM__PAIR, 0, 5, 1, &hrm__dp)      \
     X(HRM_FEHLBERG, "fehlberg", HRM__PAIR, 0, 4, 1, &hrm__rkf)                 \
     X(HRM_CASH_KARP, "cash-karp", HRM__PAIR, 0, 4, 1, &hrm__ck)                \
-    X(HRM_VERNER, "verner", HRM__PAIR, 0, 6, 1, &hrm__vr)
+    X(HRM_VERNER, "verner", HRM__PAIR, 0, 6, 1, &hrm__vr)                     \
+    X(HRM_ANALYTIC_MARCH, "analytic-march", HRM__FIXED_QUAD, 32, 2, 0, 0)
 
 typedef enum hrm_method {
     HRM_METHOD_DEFAULT = 0,
@@ -575,7 +591,8 @@ typedef enum hrm_gk_rule {
    Both integrate sigma_t in t over the actual distances between abscissae,
    so a constant sigma_t given through callbacks is exact under any warp. */
 typedef enum hrm_tau_mode {
-    HRM_TAU_DEFAULT = 0,     /* HRM_TAU_DECOUPLED */
+    HRM_TAU_DEFAULT = 0,     /* HRM_TAU_DECOUPLED (the analytic march:
+                                HRM_TAU_COUPLED, sigma_t at its samples) */
     HRM_TAU_DECOUPLED,       /* medium-only samples placed in t by their own
                                 accuracy control (options.tau_tol), apart
                                 from the source samples (Kulla and Fajardo
@@ -2321,6 +2338,85 @@ static void hrm__nodes(hrm__ctx *c, int N, int kind, hrm_real xi,
         }
 }
 
+/* tau(t0, t0 + off) where it has a closed form (homogeneous, the
+   transmittance callback) or the layer holds it. */
+static void hrm__tau_of(hrm__ctx *c, hrm_real off, hrm_real tau[HRM__CH])
+{
+    hrm_real tr[HRM__CH], tiny = HRM__IS_FLOAT ? HRM__R(FLT_MIN) : HRM__R(DBL_MIN);
+    int i;
+    if (c->homog) {
+        for (i = 0; i < HRM__CH; ++i) tau[i] = c->st[i] == 0 ? 0 : c->st[i] * off;
+    } else if (c->decoupled) {
+        hrm__tau_at(c, c->tau, off, tau);
+    } else {
+        c->m->transmittance(c->m->user, c->t0, hrm__abscissa(c, off), tr);
+        hrm__check(c, tr, 2);
+        c->stats.medium_evals++;
+        for (i = 0; i < HRM__CH; ++i) tau[i] = -HRM_LOG(tr[i] > tiny ? tr[i] : tiny);
+    }
+}
+
+/* (1 - exp(-x)) / x for x >= 0, without cancellation near 0 and 0 at
+   x = inf: the fraction of a step's length that a constant extinction
+   leaves effective. */
+static hrm_real hrm__phi1(hrm_real x)
+{
+    if (!(x > 0)) return 1;
+    if (x < HRM__R(1e-5)) return 1 - x / 2 + x * x / 6;
+    return -HRM_EXPM1(-x) / x;
+}
+
+/* The analytic march, what renderers ship (Hillaire 2015): N steps, one
+   sample each (the midpoint, or one random offset per ray with jitter);
+   over a step the source is taken constant at its sample and the
+   extinction integrated exactly: dL = Tr(a) S dt (1 - exp(-dtau)) /
+   dtau. dtau is sigma_t at the sample times dt (tau coupled, the
+   default), or tau's closed form or the layer's between the step's ends.
+   Exact in a homogeneous medium with a constant source at any N, and
+   never above sup(S / sigma_t) (1 - Tr) however thick the medium. A warp
+   places the steps (equal in u, the sample at the step's midpoint in u);
+   each step is still integrated in t, so a source whose S dt/du is flat
+   in u (a point light under the equiangular warp) is not made exact: the
+   march's error is that of a constant source over each step in t. */
+static void hrm__march(hrm__ctx *c, int N, hrm_real xi, hrm_real L[HRM__CH],
+                       hrm_real tau[HRM__CH])
+{
+    hrm_real span = c->pb - c->pa, off_l, off_r, J, tl[HRM__CH];
+    hrm__pt pt;
+    int k, i;
+
+    hrm__map(c, c->pa, &off_l, &J);
+    for (i = 0; i < HRM__CH; ++i) tl[i] = 0;
+    if (c->closed) hrm__tau_of(c, off_l, tl);
+    for (k = 0; k < N && c->status == HRM_OK; ++k) {
+        hrm_real pl = c->pa + span * ((hrm_real)k / (hrm_real)N);
+        hrm_real pr = k + 1 == N ? c->pb : c->pa + span * ((hrm_real)(k + 1) / (hrm_real)N);
+        hrm_real dt, tr[HRM__CH];
+        hrm__eval(c, pl + (pr - pl) * xi, &pt);
+        hrm__map(c, pr, &off_r, &J);
+        dt = off_r - off_l;
+        if (dt < 0) dt = 0;
+        if (c->closed) hrm__tau_of(c, off_r, tr);
+        for (i = 0; i < HRM__CH; ++i) {
+            hrm_real S = pt.J > 0 ? pt.gq[i] / pt.J : 0, dtau;
+            if (c->closed) {
+                dtau = tr[i] - tl[i];
+            } else {
+                /* sigma_t at the sample (the rules' sigma_t - sbar, plus sbar) */
+                hrm_real st = (pt.J > 0 ? pt.gs[i] / pt.J : 0) + c->sbar[i];
+                dtau = (st > 0 ? st : 0) * dt;
+                tr[i] = tau[i] + dtau;
+            }
+            if (!(dtau > 0)) dtau = 0;
+            L[i] += S * dt * HRM_EXP(-(c->closed ? tl[i] : tau[i])) * hrm__phi1(dtau);
+            if (!c->closed) tau[i] = tr[i];
+            tl[i] = tr[i];
+        }
+        off_l = off_r;
+        c->stats.steps++;
+    }
+}
+
 /* Composite Simpson over N panels. Without a closed form, tau at the panel
    ends comes from Simpson's rule on the sigma_t samples, and at each panel's
    midpoint from the integral of the same parabola over the panel's first
@@ -3780,7 +3876,8 @@ HRM__DEF hrm_options hrm_default_options(hrm_method method)
     o.max_evals = 100000;
     o.control = HRM_CONTROL_PI;
     o.gk_mode = HRM_GK_GLOBAL;
-    o.tau_mode = HRM_TAU_DECOUPLED;
+    /* the analytic march takes sigma_t at its samples, as renderers do */
+    o.tau_mode = o.method == HRM_ANALYTIC_MARCH ? HRM_TAU_COUPLED : HRM_TAU_DECOUPLED;
     return o;
 }
 
@@ -4024,6 +4121,8 @@ static void hrm__dispatch_one(hrm__ctx *c, const hrm_options *o, int N, hrm_real
             hrm__simpson(c, N, y + HRM__CH, y);
         else if (o->method == HRM_RECTANGLE)
             hrm__nodes(c, N, 0, o->jitter ? hrm__uniform(&c->rng) : HRM__R(0.5), y + HRM__CH, y);
+        else if (o->method == HRM_ANALYTIC_MARCH)
+            hrm__march(c, N, o->jitter ? hrm__uniform(&c->rng) : HRM__R(0.5), y + HRM__CH, y);
         else
             hrm__nodes(c, N, o->stratified ? 1 : 2, 0, y + HRM__CH, y);
         break;

@@ -84,7 +84,8 @@ static void *bench_grow(void *p, int *cap, int need, size_t size)
 
 static const char *const bench_colors[] = {
     "#1f77b4", "#ff7f0e", "#7f7f7f", "#8c564b", "#d62728", "#9467bd", "#2ca02c",
-    "#17becf", "#bcbd22", "#e377c2", "#000000", "#8c6d31", "#393b79", "#ad494a", "#637939"};
+    "#17becf", "#bcbd22", "#e377c2", "#000000", "#8c6d31", "#393b79", "#ad494a", "#637939",
+    "#00a087"};
 
 static void bench_method_add(bench_state *st, hrm_method id, hrm_gk_mode mode, hrm_gk_rule rule,
                              const char *suffix)
@@ -103,6 +104,7 @@ static void bench_method_add(bench_state *st, hrm_method id, hrm_gk_mode mode, h
     case HRM_EULER: b->kind = BENCH_FIXED; b->order = 1; break;
     case HRM_RK4: b->kind = BENCH_FIXED; b->order = 4; break;
     case HRM_ADAMS_BASHFORTH: b->kind = BENCH_FIXED; b->order = 4; break;
+    case HRM_ANALYTIC_MARCH: b->kind = BENCH_FIXED; b->order = 2; break;
     case HRM_NESTED_SIMPSON: case HRM_GAUSS_KRONROD: case HRM_BOGACKI_SHAMPINE:
     case HRM_DORMAND_PRINCE: case HRM_FEHLBERG: case HRM_CASH_KARP: case HRM_VERNER:
         break;

@@ -499,14 +499,14 @@ double rel_err_Tr(const problem *p, double t0, double t1, const hrm_real *Tr)
 const hrm_method every_method[N_METHODS_ALL] = {
     HRM_RECTANGLE, HRM_SIMPSON, HRM_MONTE_CARLO, HRM_EULER, HRM_RK4, HRM_ADAMS_BASHFORTH,
     HRM_NESTED_SIMPSON, HRM_GAUSS_KRONROD, HRM_BOGACKI_SHAMPINE, HRM_DORMAND_PRINCE,
-    HRM_FEHLBERG, HRM_CASH_KARP, HRM_VERNER };
+    HRM_FEHLBERG, HRM_CASH_KARP, HRM_VERNER, HRM_ANALYTIC_MARCH };
 
 /* every_method lists every method of hrm.h: fails to compile otherwise */
 typedef char every_method_is_complete[N_METHODS_ALL == (int)HRM_METHOD_COUNT - 1 ? 1 : -1];
 
 int is_ivp(hrm_method m) { return m == HRM_EULER || m == HRM_RK4 || m == HRM_ADAMS_BASHFORTH; }
 
-int is_adaptive(hrm_method m) { return m >= HRM_NESTED_SIMPSON; }
+int is_adaptive(hrm_method m) { return m >= HRM_NESTED_SIMPSON && m <= HRM_VERNER; }
 
 int is_pair(hrm_method m) { return m >= HRM_BOGACKI_SHAMPINE && m <= HRM_VERNER; }
 

@@ -48,6 +48,7 @@ void adaptive_tests(void);
 void warp_tests(void);
 void transmittance_tests(void);
 void breaks_tests(void);
+void exponential_tests(void);
 
 /* ------------------------------------------------------------------------
    Precision and small numerics
@@ -224,7 +225,7 @@ double gl_exact_f(const problem *p, int c, double t0, double a, double b, int pa
    Methods, options, solving, results
    ------------------------------------------------------------------------ */
 /* Every method in hrm's order: the six fixed-step ones first. */
-#define N_METHODS_ALL 13
+#define N_METHODS_ALL 14
 #define N_METHODS_FIXED 6
 extern const hrm_method every_method[N_METHODS_ALL];
 

@@ -15,5 +15,6 @@ int main(void)
     warp_tests();
     transmittance_tests();
     breaks_tests();
+    exponential_tests();
     return harness_summary();
 }

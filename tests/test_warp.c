@@ -508,6 +508,10 @@ static void wp_every_method(void)
             }
             snprintf(what, sizeof what, "%s, %s:", li ? "point light" : "directional", cs->name);
             for (mi = 0; mi < N_METHODS_ALL; ++mi) {
+                /* the analytic march integrates each step in t with the
+                   source held constant: its bound is not one of the rules
+                   in u (test_march.c checks it under every warp) */
+                if (every_method[mi] == HRM_ANALYTIC_MARCH) continue;
                 wp_check_method(&p, every_method[mi], 0, &w, &bd, t0, t1, what);
                 if (every_method[mi] == HRM_MONTE_CARLO)
                     wp_check_method(&p, every_method[mi], 1, &w, &bd, t0, t1, what);
@@ -1156,6 +1160,9 @@ static void wp_equiangular_edges(void)
                 hrm_medium m;
                 hrm_result r;
                 double worst = 0, bound, D = Ds[k];
+                /* exact in u, where S dt/du is constant: not the analytic
+                   march, which holds S constant over each step in t */
+                if (meth == HRM_ANALYTIC_MARCH) continue;
                 /* float: t near 3.3 is resolved to 2.4e-7, so a light
                    1e-9 away cannot be placed by the host's Li (whose error
                    near the peak is |t| eps / D relative): D = 1e-2 there */
@@ -1230,6 +1237,7 @@ static void wp_equiangular_edges(void)
         for (mi = 0; mi < N_METHODS_ALL; ++mi) {
             hrm_method meth = every_method[mi];
             hrm_warp w = wp_warp(HRM_WARP_EQUIANGULAR, 0, 5e5, 1e3, NULL);
+            if (meth == HRM_ANALYTIC_MARCH) continue; /* as above: exact in u only */
             hrm_options o = wp_options(meth, 8, &w);
             hrm_medium m = problem_medium(&p);
             hrm_result r;
