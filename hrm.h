@@ -419,6 +419,39 @@
    breakpoints.
 
    ==========================================================================
+   EXPONENTIAL FITTING (options.exponential)
+   ==========================================================================
+   In a thick medium Tr S falls by exp(-sigma_t h) over a step, and a
+   polynomial rule needs many steps to follow it (or, in the RTE form,
+   blows up). With options.exponential = 1, Simpson, Gauss-Kronrod (K and
+   G alike) and the Runge-Kutta pairs (optical-depth form) take tau at
+   their nodes (closed form, transmittance callback or the layer: not
+   with HRM_TAU_COUPLED), factor the exponential of tau's slope across
+   the step out of Tr S, interpolate what is left by the rule's own
+   polynomial on its nodes, and integrate that against the exponential
+   exactly (Legendre moments of exp(-b (y + 1)), which are scaled modified
+   spherical Bessel functions: series, Miller's recurrence or the forward
+   one by b, finite for any b). So:
+   - a homogeneous medium with a source polynomial of degree n - 1 (n the
+     rule's distinct nodes: Simpson 3, G7/K15 15, a pair its stages' nodes)
+     is exact at any step count and depth, without a warp (a warp makes
+     tau nonlinear in the rule's variable);
+   - each step's sum stays between its nodes' least and largest fitted
+     value times the exponential's integral: L >= 0, and L <= sup(S /
+     sigma_t) (1 - Tr) in a homogeneous medium, however thick;
+   - sigma_t -> 0 uses the moments' series (no 0/0), sigma_t h -> inf
+     their asymptotic form (no overflow);
+   - the embedded estimates (pairs) are those of the fitted values times
+     the exponential's mass over the step; Gauss-Kronrod's is |K - G|.
+   It is an option on the existing methods rather than new methods: the
+   nodes, the adaptivity and the estimates are the rules' own, and only
+   the weights change with the step's optical depth. Cost per step: one
+   set of n moments per channel (no callback). Choose it for thick media
+   and clouds. As sigma_t -> 0 it tends to the interpolatory rule on the
+   same nodes: Simpson's and Kronrod's own weights; for a pair, the
+   interpolatory weights of its distinct nodes (not its tableau's b).
+
+   ==========================================================================
    TRANSMITTANCE (options.tau_mode, options.tau_tol)
    ==========================================================================
    tau is integrated in t, over the actual distances between abscissae,
@@ -703,6 +736,11 @@ typedef struct hrm_options {
                            and made a breakpoint (BREAKPOINTS). 1: as 0,
                            and fixed-step methods scan sigma too. -1:
                            never */
+    int exponential;    /* 1: exponentially fitted rules (EXPONENTIAL
+                           FITTING): Simpson, Gauss-Kronrod and the
+                           Runge-Kutta pairs (optical-depth form) integrate
+                           their source polynomial against the exact local
+                           exponential of tau. 0: the plain rules */
 } hrm_options;
 
 typedef struct hrm_stats {
@@ -1146,7 +1184,18 @@ typedef struct hrm__pt {
     hrm_real gs[HRM__CH];  /* sigma_t(s) * ds/dp */
     hrm_real gq[HRM__CH];  /* S(s) * ds/dp */
     hrm_real tr[HRM__CH];  /* Tr(t0, s), when the medium has a closed form */
+    hrm_real tau[HRM__CH]; /* and tau(t0, s) (exponential fits), likewise */
 } hrm__pt;
+
+/* An exponentially fitted rule on nodes y[0..n) of [-1, 1] (ascending):
+   A[k][j] is the coefficient of the Legendre polynomial P_k in the
+   Lagrange polynomial of node j. */
+#define HRM__EFIT_MAX 15
+typedef struct hrm__efit {
+    int n;
+    hrm_real y[HRM__EFIT_MAX];
+    hrm_real A[HRM__EFIT_MAX][HRM__EFIT_MAX];
+} hrm__efit;
 
 typedef struct hrm__ctx {
     const hrm_medium *m;
@@ -1183,6 +1232,8 @@ typedef struct hrm__ctx {
     hrm_real w_delta;          /* equiangular: the light's foot on the ray */
     int find_jumps;            /* locate jumps (options.find_jumps) */
     int scan;                  /* scan the medium for jumps first */
+    int expo;                  /* exponentially fitted rules */
+    hrm__efit ef[2];           /* their fits: the rule's, G's (Gauss-Kronrod) */
     long piece_cost;           /* the least evaluations a piece costs */
     long split_cost;           /* a worst-first split's evaluations */
     hrm_real wf_tol;           /* worst first: the current tolerance, summed */
@@ -2129,6 +2180,27 @@ static hrm_real hrm__att(const hrm__ctx *c, const hrm__pt *pt, int i, hrm_real t
     return c->closed ? pt->tr[i] : HRM_EXP(-tau);
 }
 
+/* Tr and tau at a node of a homogeneous medium. */
+static void hrm__homog_tr(const hrm__ctx *c, hrm__pt *pt)
+{
+    int i;
+    for (i = 0; i < HRM__CH; ++i) {
+        pt->tau[i] = c->st[i] == 0 ? 0 : c->st[i] * pt->off;
+        pt->tr[i] = HRM_EXP(-pt->tau[i]);
+    }
+}
+
+/* tau from the transmittance callback's Tr (an underflowed Tr counts as
+   the smallest normal number's tau). */
+static void hrm__neg_log(const hrm_real tr[HRM__CH], hrm_real tau[HRM__CH])
+{
+    hrm_real tiny = HRM__IS_FLOAT ? HRM__R(FLT_MIN) : HRM__R(DBL_MIN);
+    int i;
+    for (i = 0; i < HRM__CH; ++i) tau[i] = -HRM_LOG(tr[i] > tiny ? tr[i] : tiny);
+}
+
+static void hrm__tau_of_tr(hrm__pt *pt) { hrm__neg_log(pt->tr, pt->tau); }
+
 static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
 {
     const hrm_medium *m = c->m;
@@ -2153,13 +2225,13 @@ static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
             /* the callbacks' values at s again; Tr from the node's own
                offset (it resolves t0 + off finer than s does) */
             if (c->homog) {
-                for (i = 0; i < HRM__CH; ++i) pt->tr[i] = HRM_EXP(-c->st[i] * pt->off);
+                hrm__homog_tr(c, pt);
             } else if (c->decoupled) {
-                hrm_real tau[HRM__CH];
-                hrm__tau_at(c, c->tau, pt->off, tau);
-                for (i = 0; i < HRM__CH; ++i) pt->tr[i] = HRM_EXP(-tau[i]);
+                hrm__tau_at(c, c->tau, pt->off, pt->tau);
+                for (i = 0; i < HRM__CH; ++i) pt->tr[i] = HRM_EXP(-pt->tau[i]);
             } else {
                 memcpy(pt->tr, c->memo[k].tr, sizeof pt->tr);
+                hrm__tau_of_tr(pt);
             }
             for (i = 0; i < HRM__CH; ++i) {
                 pt->gq[i] = c->memo[k].q[i] * J;
@@ -2172,15 +2244,14 @@ static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
         memcpy(sa, c->sa, sizeof sa);
         memcpy(ss, c->ss, sizeof ss);
         memcpy(st, c->st, sizeof st);
-        for (i = 0; i < HRM__CH; ++i) pt->tr[i] = HRM_EXP(-c->st[i] * pt->off);
+        hrm__homog_tr(c, pt);
     } else {
         int medium = hrm__coeffs(c, s, c->use_le && !c->per_length, c->use_li, c->need_st,
                                  sa, ss, st);
         if (c->decoupled) {
-            hrm_real tau[HRM__CH];
             const hrm__tpanel *tp;
-            hrm__tau_at(c, c->tau, pt->off, tau);
-            for (i = 0; i < HRM__CH; ++i) pt->tr[i] = HRM_EXP(-tau[i]);
+            hrm__tau_at(c, c->tau, pt->off, pt->tau);
+            for (i = 0; i < HRM__CH; ++i) pt->tr[i] = HRM_EXP(-pt->tau[i]);
             /* sigma_a or sigma_s here above twice every sigma_t the layer's
                panel sampled: the panel missed something between its nodes
                (a dense slab); hrm__dispatch samples it there and solves
@@ -2198,6 +2269,7 @@ static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
         } else if (c->closed) {
             m->transmittance(m->user, c->t0, s, pt->tr);
             hrm__check(c, pt->tr, 2);
+            hrm__tau_of_tr(pt);
             medium = 1;
         }
         c->stats.medium_evals += medium;
@@ -2342,7 +2414,7 @@ static void hrm__nodes(hrm__ctx *c, int N, int kind, hrm_real xi,
    transmittance callback) or the layer holds it. */
 static void hrm__tau_of(hrm__ctx *c, hrm_real off, hrm_real tau[HRM__CH])
 {
-    hrm_real tr[HRM__CH], tiny = HRM__IS_FLOAT ? HRM__R(FLT_MIN) : HRM__R(DBL_MIN);
+    hrm_real tr[HRM__CH];
     int i;
     if (c->homog) {
         for (i = 0; i < HRM__CH; ++i) tau[i] = c->st[i] == 0 ? 0 : c->st[i] * off;
@@ -2352,7 +2424,7 @@ static void hrm__tau_of(hrm__ctx *c, hrm_real off, hrm_real tau[HRM__CH])
         c->m->transmittance(c->m->user, c->t0, hrm__abscissa(c, off), tr);
         hrm__check(c, tr, 2);
         c->stats.medium_evals++;
-        for (i = 0; i < HRM__CH; ++i) tau[i] = -HRM_LOG(tr[i] > tiny ? tr[i] : tiny);
+        hrm__neg_log(tr, tau);
     }
 }
 
@@ -2364,6 +2436,143 @@ static hrm_real hrm__phi1(hrm_real x)
     if (!(x > 0)) return 1;
     if (x < HRM__R(1e-5)) return 1 - x / 2 + x * x / 6;
     return -HRM_EXPM1(-x) / x;
+}
+
+/* ---------------------------------------------------------------------- */
+/* Exponentially fitted rules                                              */
+/* ---------------------------------------------------------------------- */
+
+/* The fit on nodes y[0..n) (ascending, in [-1, 1]): the Legendre
+   Vandermonde matrix V[j][k] = P_k(y_j) inverted by Gauss-Jordan with
+   partial pivoting (n <= 15; near-Gauss nodes keep it well conditioned). */
+static void hrm__efit_init(hrm__efit *F, const hrm_real *y, int n)
+{
+    hrm_real V[HRM__EFIT_MAX][2 * HRM__EFIT_MAX];
+    int j, k, r;
+    F->n = n;
+    for (j = 0; j < n; ++j) {
+        hrm_real p0 = 1, p1 = y[j];
+        F->y[j] = y[j];
+        for (k = 0; k < n; ++k) {
+            hrm_real pk = k == 0 ? 1 : k == 1 ? y[j] : ((2 * (hrm_real)k - 1) * y[j] * p1 -
+                                                       ((hrm_real)k - 1) * p0) / (hrm_real)k;
+            if (k >= 2) {
+                p0 = p1;
+                p1 = pk;
+            }
+            V[j][k] = pk;
+            V[j][n + k] = j == k ? 1 : 0;
+        }
+    }
+    for (k = 0; k < n; ++k) {
+        int piv = k;
+        for (r = k + 1; r < n; ++r)
+            if (HRM_FABS(V[r][k]) > HRM_FABS(V[piv][k])) piv = r;
+        for (j = 0; j < 2 * n; ++j) {
+            hrm_real t = V[k][j];
+            V[k][j] = V[piv][j];
+            V[piv][j] = t;
+        }
+        for (j = 2 * n - 1; j >= k; --j) V[k][j] /= V[k][k];
+        for (r = 0; r < n; ++r) {
+            hrm_real f = V[r][k];
+            if (r == k || f == 0) continue;
+            for (j = k; j < 2 * n; ++j) V[r][j] -= f * V[k][j];
+        }
+    }
+    for (k = 0; k < n; ++k)
+        for (j = 0; j < n; ++j) F->A[k][j] = V[k][n + j];
+}
+
+/* s_k = exp(-b) i_k(b), k = 0..n-1, b >= 0 (i_k the modified spherical
+   Bessel functions of the first kind): int_-1^1 P_k(y) exp(-b (y + 1)) dy
+   = 2 (-1)^k s_k. The power series for b <= 1, Miller's backward
+   recurrence i_(k-1) = i_(k+1) + (2k + 1) / b i_k from well above n for
+   b < 100, the forward one (stable once b > n^2 / 2) above; s_0 =
+   (1 - exp(-2b)) / (2b) without cancellation, no overflow at any b. */
+static void hrm__msb(hrm_real b, int n, hrm_real s[HRM__EFIT_MAX])
+{
+    int k;
+    if (!(b > 0)) {
+        for (k = 0; k < n; ++k) s[k] = k == 0 ? 1 : 0;
+        return;
+    }
+    if (b <= 1) {
+        hrm_real e = HRM_EXP(-b), lead = 1;
+        for (k = 0; k < n; ++k) {
+            hrm_real term = 1, sum = 1, x = b * b / 2;
+            int m;
+            if (k > 0) lead *= b / (2 * (hrm_real)k + 1);
+            for (m = 1; m < 40; ++m) {
+                term *= x / ((hrm_real)m * (2 * (hrm_real)k + 2 * (hrm_real)m + 1));
+                sum += term;
+                if (term < HRM__EPS * sum) break;
+            }
+            s[k] = e * lead * sum;
+        }
+        return;
+    }
+    s[0] = -HRM_EXPM1(-2 * b) / (2 * b);
+    if (b < 100) {
+        int top = n + 20 + (int)(5 * HRM_SQRT(b)), j;
+        hrm_real next = 0, cur = HRM__R(1e-20), scale;
+        hrm_real keep[HRM__EFIT_MAX];
+        for (j = top; j >= 1; --j) {
+            hrm_real prev = next + (2 * (hrm_real)j + 1) / b * cur;
+            next = cur;
+            cur = prev; /* i_(j-1) */
+            if (j - 1 < n) keep[j - 1] = cur;
+            if (cur > HRM__R(1e20)) {
+                int q;
+                for (q = j - 1; q < n; ++q) keep[q] *= HRM__R(1e-20);
+                cur *= HRM__R(1e-20);
+                next *= HRM__R(1e-20);
+            }
+        }
+        scale = s[0] / keep[0];
+        for (k = 1; k < n; ++k) s[k] = keep[k] * scale;
+        return;
+    }
+    if (n > 1) s[1] = ((1 + HRM_EXP(-2 * b)) * b / 2 + HRM_EXPM1(-2 * b) / 2) / (b * b);
+    for (k = 1; k + 1 < n; ++k) s[k + 1] = s[k - 1] - (2 * (hrm_real)k + 1) / b * s[k];
+}
+
+/* One panel of half-width hl (in p) by the fit on its nodes pt[0..n):
+   per channel, b is the slope of tau across the nodes per unit y, the
+   source times Tr / exp(-b (y + 1)) is interpolated by the nodes'
+   polynomial and integrated against exp(-b (y + 1)) exactly. A
+   homogeneous medium (tau linear in p) with a polynomial source of degree
+   n - 1 is exact at any width and depth. The sum is kept within the
+   nodes' least and largest value times the weight's integral: never
+   negative, never above the bound however thick. Also mass: the weight's
+   integral times exp(-tau at y = -1) (the scale of the embedded
+   estimates). g receives the fitted values. */
+static void hrm__efit_panel(const hrm__efit *F, const hrm__pt *pt, hrm_real hl, hrm_real out[HRM__CH],
+                            hrm_real mass[HRM__CH], hrm_real g[HRM__EFIT_MAX][HRM__CH])
+{
+    int n = F->n, i, j, k;
+    hrm_real cap = HRM__IS_FLOAT ? HRM__R(80) : HRM__R(700);
+    for (i = 0; i < HRM__CH; ++i) {
+        hrm_real b = (pt[n - 1].tau[i] - pt[0].tau[i]) / (F->y[n - 1] - F->y[0]);
+        hrm_real s[HRM__EFIT_MAX] = {0}, tref, acc = 0, lo = 0, hi = 0, m, scale;
+        if (!(b > 0)) b = 0;
+        tref = pt[0].tau[i] - b * (F->y[0] + 1);
+        hrm__msb(b, n, s);
+        for (j = 0; j < n; ++j) {
+            hrm_real w = 0, x = -(pt[j].tau[i] - tref - b * (F->y[j] + 1));
+            for (k = 0; k < n; ++k) w += F->A[k][j] * (k % 2 ? -2 : 2) * s[k];
+            g[j][i] = pt[j].gq[i] * HRM_EXP(x < cap ? x : cap);
+            acc += w * g[j][i];
+            if (j == 0 || g[j][i] < lo) lo = g[j][i];
+            if (j == 0 || g[j][i] > hi) hi = g[j][i];
+        }
+        m = 2 * s[0];
+        if (acc < lo * m) acc = lo * m;
+        if (acc > hi * m) acc = hi * m;
+        scale = HRM_EXP(-tref) * hl;
+        out[i] = acc * scale;
+        mass[i] = m * scale;
+    }
 }
 
 /* The analytic march, what renderers ship (Hillaire 2015): N steps, one
@@ -2438,6 +2647,20 @@ static void hrm__simpson(hrm__ctx *c, int N, hrm_real L[HRM__CH], hrm_real tau[H
         hrm_real H = pr - pl;
         hrm__eval(c, pl + H / 2, &mid);
         hrm__eval(c, pr, &b);
+        if (c->expo) {
+            /* the panel's parabola against the exact local exponential */
+            hrm__pt P3[3];
+            hrm_real out[HRM__CH], mass[HRM__CH], g[HRM__EFIT_MAX][HRM__CH];
+            P3[0] = a;
+            P3[1] = mid;
+            P3[2] = b;
+            hrm__efit_panel(&c->ef[0], P3, H / 2, out, mass, g);
+            for (i = 0; i < HRM__CH; ++i) L[i] += out[i];
+            a = b;
+            c->stats.steps++;
+            if (c->status != HRM_OK) return;
+            continue;
+        }
         for (i = 0; i < HRM__CH; ++i) {
             hrm_real tm = 0, tb = 0, eb;
             if (c->coupled) {
@@ -2530,6 +2753,31 @@ static void hrm__nodes_init(const hrm__tableau *tb, hrm__nodes_info *ni)
     }
 }
 
+/* The fits a method's rules use: Simpson's three nodes; Gauss-Kronrod's
+   Kronrod nodes and its Gauss nodes; a pair's distinct nodes. */
+static void hrm__efit_setup(hrm__ctx *c, const hrm_options *o)
+{
+    hrm_real y[HRM__EFIT_MAX];
+    int j, n = 0;
+    if (o->method == HRM_SIMPSON) {
+        y[0] = -1;
+        y[1] = 0;
+        y[2] = 1;
+        hrm__efit_init(&c->ef[0], y, 3);
+    } else if (o->method == HRM_GAUSS_KRONROD) {
+        const hrm__gk_pair *R = o->gk_rule == HRM_GK_K7 ? &hrm__k7 : &hrm__k15;
+        hrm__efit_init(&c->ef[0], R->x, R->n);
+        for (j = 0; j < R->n; ++j)
+            if (R->wg[j] != 0) y[n++] = R->x[j];
+        hrm__efit_init(&c->ef[1], y, n);
+    } else {
+        hrm__nodes_info ni;
+        hrm__nodes_init(hrm__methods[o->method].tb, &ni);
+        for (j = 0; j < ni.m; ++j) y[j] = 2 * ni.c[j] - 1;
+        hrm__efit_init(&c->ef[0], y, ni.m);
+    }
+}
+
 /* The top term of the Newton interpolation series of the values d at the
    distinct nodes, integrated over a step of length h (d is overwritten
    with the divided differences). */
@@ -2547,9 +2795,10 @@ static int hrm__rk_quad(hrm__ctx *c, const hrm__nodes_info *ni, const hrm__pt *s
                         hrm__pt *end, hrm_real p, hrm_real p_end, const hrm_real *y,
                         hrm_real *ynew, hrm_real *err, hrm_real *both)
 {
-    hrm__pt pn[HRM__MAX_STAGES];
+    hrm__pt pn[HRM__MAX_STAGES], P[HRM__MAX_STAGES];
     hrm_real f[HRM__MAX_STAGES][HRM__CH], h = p_end - p;
     int i, j, endj = -1;
+    if (c->expo) memset(P, 0, sizeof P);
     for (j = 0; j < ni->m; ++j) {
         const hrm__pt *q = start;
         hrm_real cj = ni->c[j];
@@ -2559,6 +2808,34 @@ static int hrm__rk_quad(hrm__ctx *c, const hrm__nodes_info *ni, const hrm__pt *s
             if (cj == 1) endj = j;
         }
         for (i = 0; i < HRM__CH; ++i) f[j][i] = q->tr[i] * q->gq[i];
+        if (c->expo) P[j] = *q;
+    }
+    if (c->expo) {
+        /* the nodes' polynomial against the exact local exponential; the
+           embedded estimates are those of the fitted values g (what is
+           interpolated) times the exponential's mass over the step */
+        hrm_real out[HRM__CH], mass[HRM__CH], g[HRM__EFIT_MAX][HRM__CH];
+        hrm__efit_panel(&c->ef[0], P, h / 2, out, mass, g);
+        for (i = 0; i < HRM__CH; ++i) {
+            hrm_real eacc = 0, d[HRM__MAX_STAGES];
+            for (j = 0; j < ni->m; ++j) {
+                eacc += ni->ew[j] * g[j][i];
+                d[j] = g[j][i];
+            }
+            ynew[i] = y[i];
+            ynew[HRM__CH + i] = y[HRM__CH + i] + out[i];
+            if (err) {
+                err[i] = 0;
+                err[HRM__CH + i] = eacc * mass[i];
+            }
+            if (err && both) {
+                hrm_real top = hrm__newton_top(ni, d, h) * mass[i] / h;
+                both[i] = 0;
+                both[HRM__CH + i] = HRM_FABS(err[HRM__CH + i]) > top ? HRM_FABS(err[HRM__CH + i]) : top;
+            }
+        }
+        if (endj >= 0) *end = pn[endj];
+        return endj >= 0;
     }
     for (i = 0; i < HRM__CH; ++i) {
         hrm_real acc = 0, eacc = 0;
@@ -3188,6 +3465,7 @@ static void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, const hrm_real *tau_a,
     const hrm_real *Sa = io->ha ? io->Sa : 0, *Sb = io->hb ? io->Sb : 0;
     hrm__pt pt[15];
     hrm_real hl = (b - a) / 2, mid = (a + b) / 2, off_a = 0, off_b = 0, J, lw[15], big = -1;
+    hrm_real eK[HRM__CH], eG[HRM__CH];
     int j, l, n, N = R->n, chk = io->hc && (io->xc - a) * (io->xc - b) < 0;
 
     for (j = 0; j < N; ++j) hrm__eval(c, 2 * j + 1 == N ? mid : mid + hl * R->x[j], &pt[j]);
@@ -3214,6 +3492,15 @@ static void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, const hrm_real *tau_a,
     if (c->coupled) {
         hrm__map(c, a, &off_a, &J);
         hrm__map(c, b, &off_b, &J);
+    }
+    if (c->expo) {
+        /* K and G against the exact local exponential */
+        hrm__pt pg[HRM__EFIT_MAX];
+        hrm_real mass[HRM__CH], g[HRM__EFIT_MAX][HRM__CH];
+        for (j = 0, l = 0; j < N; ++j)
+            if (R->wg[j] != 0) pg[l++] = pt[j];
+        hrm__efit_panel(&c->ef[0], pt, hl, eK, mass, g);
+        hrm__efit_panel(&c->ef[1], pg, hl, eG, mass, g);
     }
     for (n = 0; n < HRM__NY; ++n) {
         int ch = n % HRM__CH, is_tau = n < HRM__CH;
@@ -3242,6 +3529,10 @@ static void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, const hrm_real *tau_a,
         K[n] = rk * hl;
         if (is_tau) K[n] += c->sbar[ch] * (off_b - off_a);
         ek[n] = HRM_FABS((rk - rg) * hl);
+        if (c->expo && !is_tau) {
+            K[n] = eK[ch];
+            ek[n] = HRM_FABS(eK[ch] - eG[ch]);
+        }
         eend = 0;
         if (!is_tau) {
             /* An interval whose end was sampled (an end of the ray, or
@@ -3918,6 +4209,14 @@ static hrm_status hrm__resolve(const hrm_options *in, hrm_options *o)
     if (o->gk_mode == HRM_GK_DEFAULT) o->gk_mode = d.gk_mode;
     if ((int)o->gk_rule < 0 || (int)o->gk_rule > (int)HRM_GK_K7) return HRM_ERR_BAD_OPTION;
     if (o->find_jumps < -1 || o->find_jumps > 1) return HRM_ERR_BAD_OPTION;
+    /* the fits need tau at every node (a closed form or the layer) and a
+       rule that is a quadrature: not the RTE form, not coupled tau */
+    if (o->exponential < 0 || o->exponential > 1) return HRM_ERR_BAD_OPTION;
+    if (o->exponential &&
+        ((o->method != HRM_SIMPSON && o->method != HRM_GAUSS_KRONROD &&
+          hrm__methods[o->method].family != HRM__PAIR) ||
+         o->form == HRM_FORM_RTE || o->tau_mode == HRM_TAU_COUPLED))
+        return HRM_ERR_BAD_OPTION;
     if (o->gk_rule == HRM_GK_RULE_DEFAULT) o->gk_rule = HRM_GK_K15;
     if ((int)o->tau_mode < 0 || (int)o->tau_mode > (int)HRM_TAU_COUPLED) return HRM_ERR_BAD_OPTION;
     if (o->tau_mode == HRM_TAU_DEFAULT) o->tau_mode = d.tau_mode;
@@ -4015,6 +4314,8 @@ static hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, const hrm_medium *m, 
     c->closed |= c->decoupled;
     c->coupled = !c->closed && !c->rte;
     c->need_st = c->coupled || c->rte;
+    c->expo = o->exponential && c->closed;
+    if (c->expo) hrm__efit_setup(c, o);
     c->tau = layer;
     hrm__tau_init(layer, HRM__FINITE(c->T) ? c->T : HRM__R(1e30), o->tau_tol);
     if (t0 == t1) return HRM_OK;
