@@ -442,7 +442,13 @@
    - sigma_t -> 0 uses the moments' series (no 0/0), sigma_t h -> inf
      their asymptotic form (no overflow);
    - the embedded estimates (pairs) are those of the fitted values times
-     the exponential's mass over the step; Gauss-Kronrod's is |K - G|.
+     the exponential's mass over the step; Gauss-Kronrod's is |K - G|;
+   - tau from a transmittance callback is -ln Tr, known only as a bound
+     where Tr underflows (tau > 708 in double, 87 in float): a step whose
+     second node is there while its first is not is an upper bound. The
+     adaptive rules count it as error and refine; Simpson, like the
+     analytic march across such a step, returns HRM_WARN_ROUNDOFF where it
+     matters beyond round-off.
    It is an option on the existing methods rather than new methods: the
    nodes, the adaptivity and the estimates are the rules' own, and only
    the weights change with the step's optical depth. Cost per step: one
@@ -879,6 +885,7 @@ HRM_API int hrm_version(void);
 
 #define HRM__R(x) ((hrm_real)(x))
 #define HRM__IS_FLOAT (sizeof(hrm_real) == sizeof(float))
+#define HRM__TINY (HRM__IS_FLOAT ? HRM__R(FLT_MIN) : HRM__R(DBL_MIN)) /* smallest normal */
 #define HRM__EPS (HRM__IS_FLOAT ? HRM__R(FLT_EPSILON) : HRM__R(DBL_EPSILON))
 #define HRM__CH HRM_CHANNELS
 
@@ -1233,6 +1240,10 @@ typedef struct hrm__ctx {
     int find_jumps;            /* locate jumps (options.find_jumps) */
     int scan;                  /* scan the medium for jumps first */
     int expo;                  /* exponentially fitted rules */
+    int tau_from_tr;           /* tau at nodes is -ln of the transmittance
+                                  callback's Tr: capped where it underflows */
+    hrm_real unsure[HRM__CH];  /* what fixed steps across that cap added:
+                                  upper bounds, not estimates */
     hrm__efit ef[2];           /* their fits: the rule's, G's (Gauss-Kronrod) */
     long piece_cost;           /* the least evaluations a piece costs */
     long split_cost;           /* a worst-first split's evaluations */
@@ -1339,7 +1350,7 @@ static hrm_real hrm__abscissa(const hrm__ctx *c, hrm_real off)
    off the breakpoint, or the breakpoint is a few ulps off the true edge. */
 static hrm_real hrm__inside(hrm_real s, int dir)
 {
-    hrm_real tiny = HRM__IS_FLOAT ? HRM__R(FLT_MIN) : HRM__R(DBL_MIN);
+    hrm_real tiny = HRM__TINY;
     return s + (hrm_real)dir * (8 * HRM__EPS * HRM_FABS(s) + tiny);
 }
 
@@ -1691,7 +1702,7 @@ static void hrm__tau_march(hrm__ctx *c, hrm__tau *L, hrm__tcoef *co)
     }
     /* No panel is shorter than what t resolves near it. */
     res = 64 * HRM__EPS * (HRM_FABS(c->t0) + a) +
-          (HRM__IS_FLOAT ? HRM__R(FLT_MIN) : HRM__R(DBL_MIN));
+          HRM__TINY;
     for (;;) {
         hrm_real b, worst, fac;
         int floor = h <= res; /* the last try: accepted whatever its error */
@@ -1998,7 +2009,7 @@ static hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_warp *w)
            sigma_ref = 0 takes the thinnest channel's mean extinction over
            that reach. */
         hrm_real s = w->sigma_ref, reach = HRM_LOG(2 / HRM__EPS), x, tx, lowest;
-        hrm_real tiny = HRM__IS_FLOAT ? HRM__R(FLT_MIN) : HRM__R(DBL_MIN);
+        hrm_real tiny = HRM__TINY;
         if (s == 0 || inf || s * T > reach / 2) {
             hrm_real cap;
             hrm__tau_reach(c, reach, &x, &tx, &lowest);
@@ -2180,26 +2191,42 @@ static hrm_real hrm__att(const hrm__ctx *c, const hrm__pt *pt, int i, hrm_real t
     return c->closed ? pt->tr[i] : HRM_EXP(-tau);
 }
 
-/* Tr and tau at a node of a homogeneous medium. */
-static void hrm__homog_tr(const hrm__ctx *c, hrm__pt *pt)
-{
-    int i;
-    for (i = 0; i < HRM__CH; ++i) {
-        pt->tau[i] = c->st[i] == 0 ? 0 : c->st[i] * pt->off;
-        pt->tr[i] = HRM_EXP(-pt->tau[i]);
-    }
-}
-
 /* tau from the transmittance callback's Tr (an underflowed Tr counts as
    the smallest normal number's tau). */
 static void hrm__neg_log(const hrm_real tr[HRM__CH], hrm_real tau[HRM__CH])
 {
-    hrm_real tiny = HRM__IS_FLOAT ? HRM__R(FLT_MIN) : HRM__R(DBL_MIN);
+    hrm_real tiny = HRM__TINY;
     int i;
     for (i = 0; i < HRM__CH; ++i) tau[i] = -HRM_LOG(tr[i] > tiny ? tr[i] : tiny);
 }
 
 static void hrm__tau_of_tr(hrm__pt *pt) { hrm__neg_log(pt->tr, pt->tau); }
+
+/* tau(t0, t0 + off) where it has a closed form (homogeneous, the
+   transmittance callback) or the layer holds it. */
+static void hrm__tau_of(hrm__ctx *c, hrm_real off, hrm_real tau[HRM__CH])
+{
+    hrm_real tr[HRM__CH];
+    int i;
+    if (c->homog) {
+        for (i = 0; i < HRM__CH; ++i) tau[i] = c->st[i] == 0 ? 0 : c->st[i] * off;
+    } else if (c->decoupled) {
+        hrm__tau_at(c, c->tau, off, tau);
+    } else {
+        c->m->transmittance(c->m->user, c->t0, hrm__abscissa(c, off), tr);
+        hrm__check(c, tr, 2);
+        c->stats.medium_evals++;
+        hrm__neg_log(tr, tau);
+    }
+}
+
+/* Tr and tau at a node from tau's closed form or the layer. */
+static void hrm__node_tr(hrm__ctx *c, hrm__pt *pt)
+{
+    int i;
+    hrm__tau_of(c, pt->off, pt->tau);
+    for (i = 0; i < HRM__CH; ++i) pt->tr[i] = HRM_EXP(-pt->tau[i]);
+}
 
 static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
 {
@@ -2224,11 +2251,8 @@ static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
         if (hit) {
             /* the callbacks' values at s again; Tr from the node's own
                offset (it resolves t0 + off finer than s does) */
-            if (c->homog) {
-                hrm__homog_tr(c, pt);
-            } else if (c->decoupled) {
-                hrm__tau_at(c, c->tau, pt->off, pt->tau);
-                for (i = 0; i < HRM__CH; ++i) pt->tr[i] = HRM_EXP(-pt->tau[i]);
+            if (c->homog || c->decoupled) {
+                hrm__node_tr(c, pt);
             } else {
                 memcpy(pt->tr, c->memo[k].tr, sizeof pt->tr);
                 hrm__tau_of_tr(pt);
@@ -2244,14 +2268,13 @@ static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
         memcpy(sa, c->sa, sizeof sa);
         memcpy(ss, c->ss, sizeof ss);
         memcpy(st, c->st, sizeof st);
-        hrm__homog_tr(c, pt);
+        hrm__node_tr(c, pt);
     } else {
         int medium = hrm__coeffs(c, s, c->use_le && !c->per_length, c->use_li, c->need_st,
                                  sa, ss, st);
         if (c->decoupled) {
             const hrm__tpanel *tp;
-            hrm__tau_at(c, c->tau, pt->off, pt->tau);
-            for (i = 0; i < HRM__CH; ++i) pt->tr[i] = HRM_EXP(-pt->tau[i]);
+            hrm__node_tr(c, pt);
             /* sigma_a or sigma_s here above twice every sigma_t the layer's
                panel sampled: the panel missed something between its nodes
                (a dense slab); hrm__dispatch samples it there and solves
@@ -2410,24 +2433,6 @@ static void hrm__nodes(hrm__ctx *c, int N, int kind, hrm_real xi,
         }
 }
 
-/* tau(t0, t0 + off) where it has a closed form (homogeneous, the
-   transmittance callback) or the layer holds it. */
-static void hrm__tau_of(hrm__ctx *c, hrm_real off, hrm_real tau[HRM__CH])
-{
-    hrm_real tr[HRM__CH];
-    int i;
-    if (c->homog) {
-        for (i = 0; i < HRM__CH; ++i) tau[i] = c->st[i] == 0 ? 0 : c->st[i] * off;
-    } else if (c->decoupled) {
-        hrm__tau_at(c, c->tau, off, tau);
-    } else {
-        c->m->transmittance(c->m->user, c->t0, hrm__abscissa(c, off), tr);
-        hrm__check(c, tr, 2);
-        c->stats.medium_evals++;
-        hrm__neg_log(tr, tau);
-    }
-}
-
 /* (1 - exp(-x)) / x for x >= 0, without cancellation near 0 and 0 at
    x = inf: the fraction of a step's length that a constant extinction
    leaves effective. */
@@ -2441,6 +2446,8 @@ static hrm_real hrm__phi1(hrm_real x)
 /* ---------------------------------------------------------------------- */
 /* Exponentially fitted rules                                              */
 /* ---------------------------------------------------------------------- */
+
+static void hrm__warn(hrm__ctx *c, hrm_status w);
 
 /* The fit on nodes y[0..n) (ascending, in [-1, 1]): the Legendre
    Vandermonde matrix V[j][k] = P_k(y_j) inverted by Gauss-Jordan with
@@ -2546,32 +2553,59 @@ static void hrm__msb(hrm_real b, int n, hrm_real s[HRM__EFIT_MAX])
    nodes' least and largest value times the weight's integral: never
    negative, never above the bound however thick. Also mass: the weight's
    integral times exp(-tau at y = -1) (the scale of the embedded
-   estimates). g receives the fitted values. */
-static void hrm__efit_panel(const hrm__efit *F, const hrm__pt *pt, hrm_real hl, hrm_real out[HRM__CH],
-                            hrm_real mass[HRM__CH], hrm_real g[HRM__EFIT_MAX][HRM__CH])
+   estimates). g receives the fitted values. Where a transmittance
+   callback's Tr underflowed already at the second node, tau's slope is
+   only bounded below and the step's sum an upper bound (the true one lies
+   in [0, out]): un receives it, else 0. The adaptive rules count it as
+   error (they refine there until the nodes see tau), the fixed ones in
+   c->unsure (hrm__finish warns where it matters). */
+static void hrm__efit_panel(const hrm__ctx *c, const hrm__efit *F, const hrm__pt *pt, hrm_real hl,
+                            hrm_real out[HRM__CH], hrm_real mass[HRM__CH],
+                            hrm_real g[HRM__EFIT_MAX][HRM__CH], hrm_real un[HRM__CH])
 {
     int n = F->n, i, j, k;
-    hrm_real cap = HRM__IS_FLOAT ? HRM__R(80) : HRM__R(700);
+    hrm_real cap = HRM__IS_FLOAT ? HRM__R(80) : HRM__R(700), s[HRM__EFIT_MAX] = {0};
+    hrm_real w[HRM__EFIT_MAX], b_prev = -1;
+    /* hrm__neg_log's cap, where tau comes from the callback's Tr */
+    hrm_real under = c->tau_from_tr ? -HRM_LOG(HRM__TINY) : HRM__R(HUGE_VAL);
     for (i = 0; i < HRM__CH; ++i) {
-        hrm_real b = (pt[n - 1].tau[i] - pt[0].tau[i]) / (F->y[n - 1] - F->y[0]);
-        hrm_real s[HRM__EFIT_MAX] = {0}, tref, acc = 0, lo = 0, hi = 0, m, scale;
+        /* the slope from the first and the last node whose tau is known: a
+           transmittance callback's Tr that underflowed says only that tau
+           is at least -ln(smallest normal); such nodes are taken on the
+           line (their Tr S is below the smallest normal number anyway) */
+        int last = n - 1;
+        hrm_real b, tref, acc = 0, lo = 0, hi = 0, m, scale;
+        int unsure;
+        while (last > 1 && pt[last].tau[i] >= under) --last;
+        /* known only as a lower bound: the slope, and so the result */
+        unsure = pt[last].tau[i] >= under && pt[0].tau[i] < under;
+        b = (pt[last].tau[i] - pt[0].tau[i]) / (F->y[last] - F->y[0]);
         if (!(b > 0)) b = 0;
         tref = pt[0].tau[i] - b * (F->y[0] + 1);
-        hrm__msb(b, n, s);
+        if (b != b_prev) { /* the weights, once per slope (grey media: once) */
+            hrm__msb(b, n, s);
+            for (j = 0; j < n; ++j) {
+                w[j] = 0;
+                for (k = 0; k < n; ++k) w[j] += F->A[k][j] * (k % 2 ? -2 : 2) * s[k];
+            }
+            b_prev = b;
+        }
         for (j = 0; j < n; ++j) {
-            hrm_real w = 0, x = -(pt[j].tau[i] - tref - b * (F->y[j] + 1));
-            for (k = 0; k < n; ++k) w += F->A[k][j] * (k % 2 ? -2 : 2) * s[k];
+            hrm_real x = j > last ? 0 : -(pt[j].tau[i] - tref - b * (F->y[j] + 1));
             g[j][i] = pt[j].gq[i] * HRM_EXP(x < cap ? x : cap);
-            acc += w * g[j][i];
+            acc += w[j] * g[j][i];
             if (j == 0 || g[j][i] < lo) lo = g[j][i];
             if (j == 0 || g[j][i] > hi) hi = g[j][i];
         }
         m = 2 * s[0];
+        scale = HRM_EXP(-tref) * hl;
+        /* what the limit takes off is an error the estimates must see */
+        un[i] = acc < lo * m ? (lo * m - acc) * scale : acc > hi * m ? (acc - hi * m) * scale : 0;
         if (acc < lo * m) acc = lo * m;
         if (acc > hi * m) acc = hi * m;
-        scale = HRM_EXP(-tref) * hl;
         out[i] = acc * scale;
         mass[i] = m * scale;
+        if (unsure) un[i] += out[i];
     }
 }
 
@@ -2591,6 +2625,7 @@ static void hrm__march(hrm__ctx *c, int N, hrm_real xi, hrm_real L[HRM__CH],
                        hrm_real tau[HRM__CH])
 {
     hrm_real span = c->pb - c->pa, off_l, off_r, J, tl[HRM__CH];
+    hrm_real under = -HRM_LOG(HRM__TINY); /* hrm__neg_log's cap */
     hrm__pt pt;
     int k, i;
 
@@ -2607,7 +2642,7 @@ static void hrm__march(hrm__ctx *c, int N, hrm_real xi, hrm_real L[HRM__CH],
         if (dt < 0) dt = 0;
         if (c->closed) hrm__tau_of(c, off_r, tr);
         for (i = 0; i < HRM__CH; ++i) {
-            hrm_real S = pt.J > 0 ? pt.gq[i] / pt.J : 0, dtau;
+            hrm_real S = pt.J > 0 ? pt.gq[i] / pt.J : 0, dtau, dL;
             if (c->closed) {
                 dtau = tr[i] - tl[i];
             } else {
@@ -2617,7 +2652,11 @@ static void hrm__march(hrm__ctx *c, int N, hrm_real xi, hrm_real L[HRM__CH],
                 tr[i] = tau[i] + dtau;
             }
             if (!(dtau > 0)) dtau = 0;
-            L[i] += S * dt * HRM_EXP(-(c->closed ? tl[i] : tau[i])) * hrm__phi1(dtau);
+            dL = S * dt * HRM_EXP(-(c->closed ? tl[i] : tau[i])) * hrm__phi1(dtau);
+            L[i] += dL;
+            /* Tr underflowed within the step (transmittance callback):
+               dtau only bounded below, dL above */
+            if (c->tau_from_tr && tr[i] >= under && tl[i] < under) c->unsure[i] += dL;
             if (!c->closed) tau[i] = tr[i];
             tl[i] = tr[i];
         }
@@ -2650,12 +2689,15 @@ static void hrm__simpson(hrm__ctx *c, int N, hrm_real L[HRM__CH], hrm_real tau[H
         if (c->expo) {
             /* the panel's parabola against the exact local exponential */
             hrm__pt P3[3];
-            hrm_real out[HRM__CH], mass[HRM__CH], g[HRM__EFIT_MAX][HRM__CH];
+            hrm_real out[HRM__CH], mass[HRM__CH], g[HRM__EFIT_MAX][HRM__CH], un[HRM__CH];
             P3[0] = a;
             P3[1] = mid;
             P3[2] = b;
-            hrm__efit_panel(&c->ef[0], P3, H / 2, out, mass, g);
-            for (i = 0; i < HRM__CH; ++i) L[i] += out[i];
+            hrm__efit_panel(c, &c->ef[0], P3, H / 2, out, mass, g, un);
+            for (i = 0; i < HRM__CH; ++i) {
+                L[i] += out[i];
+                c->unsure[i] += un[i];
+            }
             a = b;
             c->stats.steps++;
             if (c->status != HRM_OK) return;
@@ -2814,8 +2856,8 @@ static int hrm__rk_quad(hrm__ctx *c, const hrm__nodes_info *ni, const hrm__pt *s
         /* the nodes' polynomial against the exact local exponential; the
            embedded estimates are those of the fitted values g (what is
            interpolated) times the exponential's mass over the step */
-        hrm_real out[HRM__CH], mass[HRM__CH], g[HRM__EFIT_MAX][HRM__CH];
-        hrm__efit_panel(&c->ef[0], P, h / 2, out, mass, g);
+        hrm_real out[HRM__CH], mass[HRM__CH], g[HRM__EFIT_MAX][HRM__CH], un[HRM__CH];
+        hrm__efit_panel(c, &c->ef[0], P, h / 2, out, mass, g, un);
         for (i = 0; i < HRM__CH; ++i) {
             hrm_real eacc = 0, d[HRM__MAX_STAGES];
             for (j = 0; j < ni->m; ++j) {
@@ -2826,7 +2868,8 @@ static int hrm__rk_quad(hrm__ctx *c, const hrm__nodes_info *ni, const hrm__pt *s
             ynew[HRM__CH + i] = y[HRM__CH + i] + out[i];
             if (err) {
                 err[i] = 0;
-                err[HRM__CH + i] = eacc * mass[i];
+                hrm_real e = eacc * mass[i]; /* an unsure step adds its bound */
+                err[HRM__CH + i] = e < 0 ? e - un[i] : e + un[i];
             }
             if (err && both) {
                 hrm_real top = hrm__newton_top(ni, d, h) * mass[i] / h;
@@ -3465,7 +3508,7 @@ static void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, const hrm_real *tau_a,
     const hrm_real *Sa = io->ha ? io->Sa : 0, *Sb = io->hb ? io->Sb : 0;
     hrm__pt pt[15];
     hrm_real hl = (b - a) / 2, mid = (a + b) / 2, off_a = 0, off_b = 0, J, lw[15], big = -1;
-    hrm_real eK[HRM__CH], eG[HRM__CH];
+    hrm_real eK[HRM__CH], eG[HRM__CH], uK[HRM__CH], uG[HRM__CH];
     int j, l, n, N = R->n, chk = io->hc && (io->xc - a) * (io->xc - b) < 0;
 
     for (j = 0; j < N; ++j) hrm__eval(c, 2 * j + 1 == N ? mid : mid + hl * R->x[j], &pt[j]);
@@ -3499,8 +3542,8 @@ static void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, const hrm_real *tau_a,
         hrm_real mass[HRM__CH], g[HRM__EFIT_MAX][HRM__CH];
         for (j = 0, l = 0; j < N; ++j)
             if (R->wg[j] != 0) pg[l++] = pt[j];
-        hrm__efit_panel(&c->ef[0], pt, hl, eK, mass, g);
-        hrm__efit_panel(&c->ef[1], pg, hl, eG, mass, g);
+        hrm__efit_panel(c, &c->ef[1], pg, hl, eG, mass, g, uG);
+        hrm__efit_panel(c, &c->ef[0], pt, hl, eK, mass, g, uK);
     }
     for (n = 0; n < HRM__NY; ++n) {
         int ch = n % HRM__CH, is_tau = n < HRM__CH;
@@ -3531,7 +3574,7 @@ static void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, const hrm_real *tau_a,
         ek[n] = HRM_FABS((rk - rg) * hl);
         if (c->expo && !is_tau) {
             K[n] = eK[ch];
-            ek[n] = HRM_FABS(eK[ch] - eG[ch]);
+            ek[n] = HRM_FABS(eK[ch] - eG[ch]) + (uK[ch] > uG[ch] ? uK[ch] : uG[ch]);
         }
         eend = 0;
         if (!is_tau) {
@@ -4315,6 +4358,7 @@ static hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, const hrm_medium *m, 
     c->coupled = !c->closed && !c->rte;
     c->need_st = c->coupled || c->rte;
     c->expo = o->exponential && c->closed;
+    c->tau_from_tr = c->closed && !c->homog && !c->decoupled;
     if (c->expo) hrm__efit_setup(c, o);
     c->tau = layer;
     hrm__tau_init(layer, HRM__FINITE(c->T) ? c->T : HRM__R(1e30), o->tau_tol);
@@ -4777,6 +4821,10 @@ static hrm_status hrm__finish(hrm__ctx *c, const hrm_options *o, const hrm_real 
             }
         }
     }
+    for (i = 0; i < HRM__CH; ++i)
+        /* fixed steps across the transmittance callback's underflow that
+           count beyond round-off: upper bounds, not estimates */
+        if (c->unsure[i] > 16 * HRM__EPS * HRM_FABS(L[i])) hrm__warn(c, HRM_WARN_ROUNDOFF);
     if (c->status != HRM_OK) {
         hrm__fill(L, HRM__CH, 0);
         hrm__fill(Tr, HRM__CH, 1);

@@ -68,6 +68,17 @@ static double bench_brk_value(const bench_brk_row *r, int w, int k, int axis)
     }
 }
 
+/* A method's series: its name, colour, line (dashed: adaptive) and
+   marker, and n points at most SVG_MAX_POINTS. */
+static void bench_series_style(svg_series *s, const bench_method *me, int n)
+{
+    s->label = me->name;
+    s->color = me->color;
+    s->dashed = me->kind == BENCH_ADAPTIVE;
+    s->marker = me->marker;
+    s->n = n < SVG_MAX_POINTS ? n : SVG_MAX_POINTS;
+}
+
 /* The series of a cell drawn from the breakpoint section: one per method
    measured there with the cell's warp and medium. */
 static int bench_brk_series(const bench_state *st, const bench_cell *c, svg_series *out)
@@ -83,11 +94,7 @@ static int bench_brk_series(const bench_state *st, const bench_cell *c, svg_seri
             if (r->warp != (int)c->warp || r->medium != (int)c->medium) continue;
             if (c->adaptive_only && me->kind != BENCH_ADAPTIVE) continue;
             s = &out[n++];
-            s->label = me->name;
-            s->color = me->color;
-            s->dashed = me->kind == BENCH_ADAPTIVE;
-            s->marker = me->marker;
-            s->n = r->np < SVG_MAX_POINTS ? r->np : SVG_MAX_POINTS;
+            bench_series_style(s, me, r->np);
             for (k = 0; k < s->n; ++k) {
                 s->x[k] = bench_brk_value(r, c->way, k, c->xa);
                 s->y[k] = bench_brk_value(r, c->way, k, c->ya);
@@ -109,11 +116,7 @@ static int bench_series(const bench_state *st, const bench_cell *c, svg_series *
         svg_series *s;
         if (!sw || (c->adaptive_only && me->kind != BENCH_ADAPTIVE)) continue;
         s = &out[n++];
-        s->label = me->name;
-        s->color = me->color;
-        s->dashed = me->kind == BENCH_ADAPTIVE;
-        s->marker = me->marker;
-        s->n = sw->count < SVG_MAX_POINTS ? sw->count : SVG_MAX_POINTS;
+        bench_series_style(s, me, sw->count);
         for (k = 0; k < s->n; ++k) {
             s->x[k] = bench_axis_value(&st->rows[sw->first + k], c->xa);
             s->y[k] = bench_axis_value(&st->rows[sw->first + k], c->ya);
@@ -199,11 +202,7 @@ static int bench_write_figure(const bench_state *st, const char *dir, const char
     }
     for (mi = 0; mi < st->nmethods; ++mi) {
         if (!used[mi]) continue;
-        legend[nl].label = st->methods[mi].name;
-        legend[nl].color = st->methods[mi].color;
-        legend[nl].dashed = st->methods[mi].kind == BENCH_ADAPTIVE;
-        legend[nl].marker = st->methods[mi].marker;
-        nl++;
+        bench_series_style(&legend[nl++], &st->methods[mi], 0);
     }
     svg_legend(f, BENCH_X0 + ncols * BENCH_CW - 20, BENCH_Y0 + 10, legend, nl);
     svg_end(f);
