@@ -426,34 +426,67 @@
    blows up). With options.exponential = 1, Simpson, Gauss-Kronrod (K and
    G alike) and the Runge-Kutta pairs (optical-depth form) take tau at
    their nodes (closed form, transmittance callback or the layer: not
-   with HRM_TAU_COUPLED), factor the exponential of tau's slope across
-   the step out of Tr S, interpolate what is left by the rule's own
-   polynomial on its nodes, and integrate that against the exponential
-   exactly (Legendre moments of exp(-b (y + 1)), which are scaled modified
-   spherical Bessel functions: series, Miller's recurrence or the forward
-   one by b, finite for any b). So:
-   - a homogeneous medium with a source polynomial of degree n - 1 (n the
-     rule's distinct nodes: Simpson 3, G7/K15 15, a pair its stages' nodes)
-     is exact at any step count and depth, without a warp (a warp makes
-     tau nonlinear in the rule's variable);
+   with HRM_TAU_COUPLED), factor an exponential of tau out of Tr S,
+   interpolate what is left by the rule's own polynomial on its nodes,
+   and integrate that against the exponential exactly (Legendre moments
+   of exp(-b (y + 1)), which are scaled modified spherical Bessel
+   functions: series, Miller's recurrence or the forward one by b, finite
+   for any b). The exponential's slope b is the least slope of tau
+   between neighbouring nodes: tau then lies on or above the line, and
+   no value left to interpolate exceeds its node's source (a chord's
+   slope, where tau bends across a coarse step, multiplied some by
+   exp(the bend) and sent L up by 1e35). With options.exponential = 2,
+   the same, and where the source is positive at every node of a step
+   and falls faster than Tr alone, b is the least slope of -ln(Tr S)
+   instead: the source's own decay is factored too (in-scattering from a
+   light seen through the medium: a directional light's Li is E exp(-mu
+   t) in a homogeneous medium).
+   So:
+   - exponential = 1: a homogeneous medium with a source polynomial of
+     degree n - 1 (n the rule's distinct nodes: Simpson 3, G7/K15 15, a
+     pair its stages' nodes) is exact at any step count and depth, without
+     a warp (a warp makes tau nonlinear in the rule's variable);
+   - exponential = 2: a homogeneous medium with a source C exp(-mu t)
+     (mu >= 0) is exact at any step count and depth, without a warp;
+     polynomial sources that rise are exact as with 1, falling ones are
+     not (their decay is fitted as an exponential);
    - each step's sum stays between its nodes' least and largest fitted
      value times the exponential's integral: L >= 0, and L <= sup(S /
      sigma_t) (1 - Tr) in a homogeneous medium, however thick;
    - sigma_t -> 0 uses the moments' series (no 0/0), sigma_t h -> inf
-     their asymptotic form (no overflow);
+     their asymptotic form (no overflow); with 2, the fitted values are
+     taken in logarithms relative to the step's first node (no overflow
+     whatever the source's decay);
    - the embedded estimates (pairs) are those of the fitted values times
-     the exponential's mass over the step; Gauss-Kronrod's is |K - G|;
+     the exponential's mass over the step; Gauss-Kronrod's is |K - G|,
+     and with 2 its checks of the source at an interval's ends and at
+     the parent's sample extrapolate and interpolate ln S (an
+     exponential source is no mismatch);
    - tau from a transmittance callback is -ln Tr, known only as a bound
      where Tr underflows (tau > 708 in double, 87 in float): a step whose
      second node is there while its first is not is an upper bound. The
      adaptive rules count it as error and refine; Simpson, like the
      analytic march across such a step, returns HRM_WARN_ROUNDOFF where it
-     matters beyond round-off.
+     matters beyond round-off. A source that underflows to 0 at a node
+     (float, deep in a shadow) ends the fit of its decay for that step.
    It is an option on the existing methods rather than new methods: the
    nodes, the adaptivity and the estimates are the rules' own, and only
-   the weights change with the step's optical depth. Cost per step: one
-   set of n moments per channel (no callback). Choose it for thick media
-   and clouds. As sigma_t -> 0 it tends to the interpolatory rule on the
+   the weights change with the step's optical depth; nested Simpson, the
+   fixed-step IVP solvers and the RTE form keep their plain rules
+   (HRM_ERR_BAD_OPTION). Relation to the forms: the fit is a quadrature of
+   L = int Tr S dt, the optical-depth form's integral; the RTE form's
+   stiffness (dL/dt = S - sigma_t L) is what it avoids, and for that form
+   the analytic march (HRM_ANALYTIC_MARCH) is the stable choice.
+   Cost per step: one set of n moments per channel and slope (grey media
+   and homogeneous steps: once), with 2 also a logarithm per node and
+   channel; no callback, no sample. When to choose it: optically thick
+   media (sigma_t h >> 1 at the steps you can afford) and clouds; 2 when
+   the in-scattered light itself is attenuated along the ray (a light
+   through the medium), 1 for emission and sources that are not. The
+   bench's "Exponential fitting" section (bench/results/summary.md)
+   measures both against the plain rules and the analytic march on the
+   thick scenes (sigma_t T up to 1e3) and a heterogeneous cloud (sigma_t T
+   100-500). As sigma_t -> 0 it tends to the interpolatory rule on the
    same nodes: Simpson's and Kronrod's own weights; for a pair, the
    interpolatory weights of its distinct nodes (not its tableau's b).
 
@@ -746,7 +779,9 @@ typedef struct hrm_options {
                            FITTING): Simpson, Gauss-Kronrod and the
                            Runge-Kutta pairs (optical-depth form) integrate
                            their source polynomial against the exact local
-                           exponential of tau. 0: the plain rules */
+                           exponential of tau. 2: of Tr S where the source
+                           falls too (a light seen through the medium).
+                           0: the plain rules */
 } hrm_options;
 
 typedef struct hrm_stats {
@@ -2574,13 +2609,40 @@ static void hrm__efit_panel(const hrm__ctx *c, const hrm__efit *F, const hrm__pt
            is at least -ln(smallest normal); such nodes are taken on the
            line (their Tr S is below the smallest normal number anyway) */
         int last = n - 1;
-        hrm_real b, tref, acc = 0, lo = 0, hi = 0, m, scale;
-        int unsure;
+        hrm_real b, tref, acc = 0, lo = 0, hi = 0, m, scale, lf[HRM__EFIT_MAX];
+        int unsure, whole = 0;
         while (last > 1 && pt[last].tau[i] >= under) --last;
         /* known only as a lower bound: the slope, and so the result */
         unsure = pt[last].tau[i] >= under && pt[0].tau[i] < under;
-        b = (pt[last].tau[i] - pt[0].tau[i]) / (F->y[last] - F->y[0]);
-        if (!(b > 0)) b = 0;
+        /* the least slope between neighbouring nodes: tau over the nodes
+           then lies on or above the line, so no fitted value exceeds its
+           node's source (a chord's slope, where tau bends, would multiply
+           the values below the chord by up to exp(what tau bends) and the
+           polynomial through them with it). Linear tau: its slope. */
+        b = HRM__R(HUGE_VAL);
+        for (j = 0; j < last; ++j) {
+            hrm_real sl = (pt[j + 1].tau[i] - pt[j].tau[i]) / (F->y[j + 1] - F->y[j]);
+            if (sl < b) b = sl;
+        }
+        if (!(b > 0) || !(b < HRM__R(HUGE_VAL))) b = 0;
+        if (c->expo == 2) {
+            /* the whole integrand's decay: the least slope of -ln(Tr S)
+               between neighbours, where the source is positive at every
+               node and falls faster than Tr alone (a light seen through
+               the medium); a source of the form C exp(-mu t) is then
+               factored out with Tr, exactly */
+            hrm_real bf = HRM__R(HUGE_VAL);
+            for (j = 0; j <= last && bf > b; ++j) {
+                if (!(pt[j].gq[i] > 0)) break;
+                lf[j] = HRM_LOG(pt[j].gq[i]) - pt[j].tau[i];
+                if (j > 0) {
+                    hrm_real sl = (lf[j - 1] - lf[j]) / (F->y[j] - F->y[j - 1]);
+                    if (sl < bf) bf = sl;
+                }
+            }
+            whole = last == n - 1 && j > last && bf > b && bf < HRM__R(HUGE_VAL);
+            if (whole) b = bf;
+        }
         tref = pt[0].tau[i] - b * (F->y[0] + 1);
         if (b != b_prev) { /* the weights, once per slope (grey media: once) */
             hrm__msb(b, n, s);
@@ -2592,13 +2654,16 @@ static void hrm__efit_panel(const hrm__ctx *c, const hrm__efit *F, const hrm__pt
         }
         for (j = 0; j < n; ++j) {
             hrm_real x = j > last ? 0 : -(pt[j].tau[i] - tref - b * (F->y[j] + 1));
-            g[j][i] = pt[j].gq[i] * HRM_EXP(x < cap ? x : cap);
+            /* in logarithms where the source is factored too, relative to
+               the first node: at most 1, never overflowing */
+            if (whole) g[j][i] = HRM_EXP(lf[j] - lf[0] + b * (F->y[j] - F->y[0]));
+            else g[j][i] = pt[j].gq[i] * HRM_EXP(x < cap ? x : cap);
             acc += w[j] * g[j][i];
             if (j == 0 || g[j][i] < lo) lo = g[j][i];
             if (j == 0 || g[j][i] > hi) hi = g[j][i];
         }
         m = 2 * s[0];
-        scale = HRM_EXP(-tref) * hl;
+        scale = (whole ? HRM_EXP(lf[0] + b * (F->y[0] + 1)) : HRM_EXP(-tref)) * hl;
         /* what the limit takes off is an error the estimates must see */
         un[i] = acc < lo * m ? (lo * m - acc) * scale : acc > hi * m ? (acc - hi * m) * scale : 0;
         if (acc < lo * m) acc = lo * m;
@@ -3588,7 +3653,7 @@ static void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, const hrm_real *tau_a,
             int e;
             for (e = 0; e < 2; ++e) {
                 int j0 = e ? N - 1 : 0, j1 = e ? N - 2 : 1;
-                hrm_real xe = e ? 1 : -1, s0, s1, se, gap, att;
+                hrm_real xe = e ? 1 : -1, s0, s1, se, gap, att, r, pred;
                 if (!(e ? Sb : Sa)) continue;
                 s0 = pt[j0].J > 0 ? pt[j0].gq[ch] / pt[j0].J : 0;
                 s1 = pt[j1].J > 0 ? pt[j1].gq[ch] / pt[j1].J : 0;
@@ -3599,9 +3664,12 @@ static void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, const hrm_real *tau_a,
                    relative to the interval's start when coupled) */
                 att = pt[j0].gq[ch] != 0 ? f[j0] / pt[j0].gq[ch]
                     : c->closed ? pt[j0].tr[ch] : 1;
-                eend += HRM_FABS(se - (s0 + (s0 - s1) * (xe - R->x[j0]) /
-                                               (R->x[j0] - R->x[j1]))) *
-                        pt[j0].J * gap * att;
+                r = (xe - R->x[j0]) / (R->x[j0] - R->x[j1]);
+                /* fitted to the source's decay too: extrapolated as an
+                   exponential, which the fit integrates exactly */
+                pred = c->expo == 2 && s0 > 0 && s1 > 0 ? s0 * HRM_EXP(HRM_LOG(s0 / s1) * r)
+                                                        : s0 + (s0 - s1) * r;
+                eend += HRM_FABS(se - pred) * pt[j0].J * gap * att;
             }
         }
         rabs *= HRM_FABS(hl);
@@ -3614,12 +3682,16 @@ static void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, const hrm_real *tau_a,
                than |K - G| (by h / l of it); a peak that the parent's
                node sat on and these nodes straddle misses by the peak:
                then K itself is in doubt, and the halves check it again. */
-            hrm_real p_at = 0, mis, att;
-            int jn = 0;
+            hrm_real p_at = 0, lp = 0, mis, att;
+            int jn = 0, pos = c->expo == 2;
             for (j = 0; j < N; ++j) {
                 p_at += lw[j] * pt[j].gq[ch];
+                if (pos && pt[j].gq[ch] > 0) lp += lw[j] * HRM_LOG(pt[j].gq[ch]);
+                else pos = 0;
                 if (HRM_FABS(pt[j].p - io->xc) < HRM_FABS(pt[jn].p - io->xc)) jn = j;
             }
+            /* fitted to the source's decay too: its logarithm interpolated */
+            if (pos) p_at = HRM_EXP(lp);
             att = pt[jn].gq[ch] != 0 ? f[jn] / pt[jn].gq[ch] : c->closed ? pt[jn].tr[ch] : 1;
             mis = HRM_FABS(io->gqc[ch] - p_at) * att * 2 * HRM_FABS(hl) / (hrm_real)N;
             if (mis > ek[n]) {
@@ -4254,7 +4326,7 @@ static hrm_status hrm__resolve(const hrm_options *in, hrm_options *o)
     if (o->find_jumps < -1 || o->find_jumps > 1) return HRM_ERR_BAD_OPTION;
     /* the fits need tau at every node (a closed form or the layer) and a
        rule that is a quadrature: not the RTE form, not coupled tau */
-    if (o->exponential < 0 || o->exponential > 1) return HRM_ERR_BAD_OPTION;
+    if (o->exponential < 0 || o->exponential > 2) return HRM_ERR_BAD_OPTION;
     if (o->exponential &&
         ((o->method != HRM_SIMPSON && o->method != HRM_GAUSS_KRONROD &&
           hrm__methods[o->method].family != HRM__PAIR) ||
@@ -4357,7 +4429,7 @@ static hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, const hrm_medium *m, 
     c->closed |= c->decoupled;
     c->coupled = !c->closed && !c->rte;
     c->need_st = c->coupled || c->rte;
-    c->expo = o->exponential && c->closed;
+    c->expo = c->closed ? o->exponential : 0;
     c->tau_from_tr = c->closed && !c->homog && !c->decoupled;
     if (c->expo) hrm__efit_setup(c, o);
     c->tau = layer;

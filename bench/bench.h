@@ -29,7 +29,7 @@
 #define BENCH_PLOT_FLOOR 1e-16    /* errors below this are drawn at it */
 #define BENCH_REF_CHECK 1e-13L    /* a reference must be at least this accurate */
 #define BENCH_MAX_PARAMS 16
-#define BENCH_MAX_METHODS (HRM_METHOD_COUNT + 2)
+#define BENCH_MAX_METHODS (HRM_METHOD_COUNT + 12)
 #define BENCH_MAX_SCENES 16
 #define BENCH_TAIL 4              /* the finest points, for the asymptotic order */
 #define BENCH_TARGETS 3           /* the summary's error targets: 1e-2, 1e-4, 1e-6 */
@@ -71,6 +71,7 @@ typedef struct bench_method {
     hrm_method id;
     hrm_gk_mode gk_mode;
     hrm_gk_rule gk_rule;
+    int expo;     /* options.exponential: 1 or 2 for the fitted variants */
     char name[40];
     bench_kind kind;
     double order; /* nominal order for smooth integrands (hrm.h manual); 0: none */

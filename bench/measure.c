@@ -85,15 +85,16 @@ static void *bench_grow(void *p, int *cap, int need, size_t size)
 static const char *const bench_colors[] = {
     "#1f77b4", "#ff7f0e", "#7f7f7f", "#8c564b", "#d62728", "#9467bd", "#2ca02c",
     "#17becf", "#bcbd22", "#e377c2", "#000000", "#8c6d31", "#393b79", "#ad494a", "#637939",
-    "#00a087"};
+    "#00a087", "#5254a3", "#e7969c", "#b5cf6b", "#de9ed6", "#6b6ecf", "#843c39"};
 
 static void bench_method_add(bench_state *st, hrm_method id, hrm_gk_mode mode, hrm_gk_rule rule,
-                             const char *suffix)
+                             int expo, const char *suffix)
 {
     bench_method *b = &st->methods[st->nmethods];
     b->id = id;
     b->gk_mode = mode;
     b->gk_rule = rule;
+    b->expo = expo;
     snprintf(b->name, sizeof b->name, "%s%s", hrm_method_name(id), suffix);
     b->kind = BENCH_ADAPTIVE;
     b->order = 0;
@@ -123,13 +124,24 @@ void bench_state_init(bench_state *st)
         if (m == (int)HRM_GAUSS_KRONROD) {
             /* the default (global, G7/K15), global with G3/K7, and
                Munoz's local mode (G7/K15) */
-            bench_method_add(st, HRM_GAUSS_KRONROD, HRM_GK_GLOBAL, HRM_GK_RULE_DEFAULT, "-global");
-            bench_method_add(st, HRM_GAUSS_KRONROD, HRM_GK_GLOBAL, HRM_GK_K7, "-k7");
-            bench_method_add(st, HRM_GAUSS_KRONROD, HRM_GK_LOCAL, HRM_GK_RULE_DEFAULT, "-local");
+            bench_method_add(st, HRM_GAUSS_KRONROD, HRM_GK_GLOBAL, HRM_GK_RULE_DEFAULT, 0, "-global");
+            bench_method_add(st, HRM_GAUSS_KRONROD, HRM_GK_GLOBAL, HRM_GK_K7, 0, "-k7");
+            bench_method_add(st, HRM_GAUSS_KRONROD, HRM_GK_LOCAL, HRM_GK_RULE_DEFAULT, 0, "-local");
         } else {
-            bench_method_add(st, (hrm_method)m, HRM_GK_DEFAULT, HRM_GK_RULE_DEFAULT, "");
+            bench_method_add(st, (hrm_method)m, HRM_GK_DEFAULT, HRM_GK_RULE_DEFAULT, 0, "");
         }
     }
+    /* the exponentially fitted variants (options.exponential = 1) */
+    bench_method_add(st, HRM_SIMPSON, HRM_GK_DEFAULT, HRM_GK_RULE_DEFAULT, 1, "-exp");
+    bench_method_add(st, HRM_GAUSS_KRONROD, HRM_GK_GLOBAL, HRM_GK_RULE_DEFAULT, 1, "-global-exp");
+    bench_method_add(st, HRM_GAUSS_KRONROD, HRM_GK_GLOBAL, HRM_GK_K7, 1, "-k7-exp");
+    bench_method_add(st, HRM_GAUSS_KRONROD, HRM_GK_LOCAL, HRM_GK_RULE_DEFAULT, 1, "-local-exp");
+    bench_method_add(st, HRM_BOGACKI_SHAMPINE, HRM_GK_DEFAULT, HRM_GK_RULE_DEFAULT, 1, "-exp");
+    bench_method_add(st, HRM_DORMAND_PRINCE, HRM_GK_DEFAULT, HRM_GK_RULE_DEFAULT, 1, "-exp");
+    /* and with the source's own decay factored (options.exponential = 2) */
+    bench_method_add(st, HRM_SIMPSON, HRM_GK_DEFAULT, HRM_GK_RULE_DEFAULT, 2, "-exp2");
+    bench_method_add(st, HRM_GAUSS_KRONROD, HRM_GK_GLOBAL, HRM_GK_K7, 2, "-k7-exp2");
+    bench_method_add(st, HRM_DORMAND_PRINCE, HRM_GK_DEFAULT, HRM_GK_RULE_DEFAULT, 2, "-exp2");
     st->timings = 5;
     st->batch_seconds = 1e-3;
     st->equi.scene = st->trans.point = st->trans.smoke = -1;
@@ -183,10 +195,11 @@ int bench_method_selected(const bench_state *st, int mi)
     return !cfg->user_steps || cfg->user_tols;
 }
 
-/* The summary sections run every method that --method leaves in. */
+/* The summary sections run every method that --method leaves in but the
+   fitted variants (they have their own section). */
 static int bench_method_in_sections(const bench_state *st, int mi)
 {
-    return st->methods[mi].kind != BENCH_OTHER &&
+    return st->methods[mi].kind != BENCH_OTHER && !st->methods[mi].expo &&
            (!st->cfg.any_method || st->cfg.method_on[mi]);
 }
 
@@ -454,6 +467,7 @@ static void bench_case_init(bench_case *bc, const bench_state *st, const bench_s
     bc->options = hrm_default_options(me->id);
     bc->options.gk_mode = me->gk_mode;
     bc->options.gk_rule = me->gk_rule;
+    bc->options.exponential = me->expo;
     if (bench_is_swept_over_n(me)) {
         bc->options.steps = (int)param;
     } else {

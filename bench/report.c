@@ -976,6 +976,108 @@ static void bench_report_scene_times(const bench_state *st, int si, const bench_
 }
 
 /* ------------------------------------------------------------------------ */
+/* Exponential fitting: each fitted variant against its plain rule and the  */
+/* production baseline                                                      */
+/* ------------------------------------------------------------------------ */
+
+static int bench_method_named(const bench_state *st, const char *name)
+{
+    int mi;
+    for (mi = 0; mi < st->nmethods; ++mi)
+        if (strcmp(st->methods[mi].name, name) == 0) return mi;
+    return -1;
+}
+
+/* The fewest evaluations from which sw stays at or below target, as a
+   cell ("-": never, "": no sweep). */
+static void bench_fewest_text(const bench_state *st, const bench_sweep *sw, double target,
+                              char *out, size_t size)
+{
+    long best = -1;
+    int k;
+    if (!sw) {
+        snprintf(out, size, " ");
+        return;
+    }
+    for (k = bench_reliable_from(st, sw, target); k < sw->count; ++k) {
+        long e = st->rows[sw->first + k].stats.evals;
+        if (best < 0 || e < best) best = e;
+    }
+    if (best < 0) snprintf(out, size, "-");
+    else snprintf(out, size, "%ld", best);
+}
+
+static void bench_report_expo(const bench_state *st, const bench_out *o)
+{
+    static const char *const scenes[] = {"thick", "cloud"};
+    static const char *const families[] = {
+        "simpson", "gauss-kronrod-global", "gauss-kronrod-k7", "gauss-kronrod-local",
+        "bogacki-shampine", "dormand-prince"};
+    static const char *const suffix[3] = {"", "-exp", "-exp2"};
+    static const double targets[2] = {1e-3, 1e-6};
+    int s, f, v, w, k, march = bench_method_named(st, "analytic-march"), any = 0;
+    for (s = 0; s < (int)COUNT_OF(scenes); ++s) {
+        int si = bench_find_scene(scenes[s]);
+        any |= si >= 0 && bench_scene_selected(&st->cfg, si);
+    }
+    if (!any) return;
+    bench_section(o, "Exponential fitting on the thick scenes and the cloud");
+    bench_both(o, "The fewest evaluations from which a sweep stays within a relative error of "
+                  "1e-3 / 1e-6 (- : not reached in the sweep; blank: not run): each rule plain, "
+                  "fitted to tau's exponential (options.exponential = 1, -exp) and to the whole "
+                  "integrand's (2, -exp2), against the production baseline (analytic-march). "
+                  "Fixed-step methods over N, adaptive ones over rtol.\n\n");
+    for (s = 0; s < (int)COUNT_OF(scenes); ++s) {
+        int si = bench_find_scene(scenes[s]);
+        const bench_scene *sc;
+        bench_medium_id mids[BENCH_MEDIUM_COUNT];
+        int nm;
+        bench_table t;
+        if (si < 0 || !bench_scene_selected(&st->cfg, si)) continue;
+        sc = &bench_scenes[si];
+        nm = bench_scene_media(&st->cfg, si, mids);
+        bench_both(o, "%s: %s.\n\n", sc->name, sc->description);
+        bench_table_init(&t, 6);
+        bench_table_row(&t);
+        bench_table_cell(&t, 0, "rule");
+        bench_table_cell(&t, 1, "warp");
+        bench_table_cell(&t, 2, "medium");
+        bench_table_cell(&t, 3, "plain");
+        bench_table_cell(&t, 4, "-exp");
+        bench_table_cell(&t, 5, "-exp2");
+        for (f = -1; f < (int)COUNT_OF(families); ++f)
+            for (w = 0; w < 2; ++w)
+                for (k = 0; k < nm; ++k) {
+                    bench_warp_id wid = w ? sc->natural_warp : BENCH_WARP_NONE;
+                    int shown = 0;
+                    char name[64], cell[2][24];
+                    for (v = 0; v < 3 && (f >= 0 || v == 0); ++v) {
+                        int mi, j;
+                        const bench_sweep *sw;
+                        if (f < 0) mi = march;
+                        else {
+                            snprintf(name, sizeof name, "%s%s", families[f], suffix[v]);
+                            mi = bench_method_named(st, name);
+                        }
+                        sw = mi >= 0 ? bench_find_sweep(st, si, mi, wid, mids[k]) : NULL;
+                        if (!sw && v == 0) break;
+                        if (!shown) {
+                            bench_table_row(&t);
+                            bench_table_cell(&t, 0, "%s", f < 0 ? "analytic-march" : families[f]);
+                            bench_table_cell(&t, 1, "%s", bench_warp_names[wid]);
+                            bench_table_cell(&t, 2, "%s", bench_medium_names[mids[k]]);
+                            shown = 1;
+                        }
+                        for (j = 0; j < 2; ++j)
+                            bench_fewest_text(st, sw, targets[j], cell[j], sizeof cell[j]);
+                        bench_table_cell(&t, 3 + v, "%s / %s", cell[0], cell[1]);
+                    }
+                }
+        bench_table_emit(&t, o);
+    }
+}
+
+/* ------------------------------------------------------------------------ */
 /* The summaries                                                            */
 /* ------------------------------------------------------------------------ */
 
@@ -1003,6 +1105,7 @@ void bench_report_summaries(const bench_state *st, const bench_out *summary,
     bench_report_equiangular(st, summary);
     bench_report_transmittance(st, summary);
     bench_report_breaks(st, summary);
+    bench_report_expo(st, summary);
     bench_section(summary, "Per scene: the fewest evaluations to reach an error");
     bench_both(summary,
                "For each target, the smallest evaluation count of any method, warp and medium "

@@ -1047,6 +1047,102 @@ static void slab_print(FILE *out, const void *params)
     fprintf(out, "\n");
 }
 
+/* ------------------------------------------------------------------------ */
+/* cloud: an optically thick heterogeneous cloud from callbacks, sigma_t T  */
+/* about 100 / 250 / 500, the ray starting at its face (or the camera in    */
+/* it). The density ripples at two frequencies,                             */
+/* rho(s) = 1 + a1 sin(w1 s + f1) + a2 sin(w2 s + f2), sigma_t = k rho      */
+/* (albedo alb); a directional light whose optical depth to x(s) is         */
+/* ell sigma_t(s) (the column above as dense as the point):                 */
+/* Li(s) = E p exp(-ell sigma_t(s)). tau is in closed form for the          */
+/* reference; hrm integrates it from the callbacks.                         */
+/* ------------------------------------------------------------------------ */
+
+typedef struct cloud_params {
+    double k[3], albedo;                 /* sigma_t = k rho, sigma_s = albedo sigma_t */
+    double a1, w1, f1, a2, w2, f2;       /* rho */
+    double ell;                          /* the light's path, in units of 1 / sigma_t */
+    double E[3];
+} cloud_params;
+
+static const cloud_params cloud_scene = {
+    {10.0, 25.0, 50.0}, 0.9, 0.4, 1.3, 0.4, 0.15, 3.7, 1.1, 0.1, {3.0, 2.5, 2.0}};
+
+static long double cloud_rho(const cloud_params *p, long double s)
+{
+    return 1 + LD(p->a1) * sinl(LD(p->w1) * s + LD(p->f1)) + LD(p->a2) * sinl(LD(p->w2) * s + LD(p->f2));
+}
+
+/* int_0^s rho */
+static long double cloud_rho_integral(const cloud_params *p, long double s)
+{
+    return s + LD(p->a1) * (cosl(LD(p->f1)) - cosl(LD(p->w1) * s + LD(p->f1))) / LD(p->w1) +
+           LD(p->a2) * (cosl(LD(p->f2)) - cosl(LD(p->w2) * s + LD(p->f2))) / LD(p->w2);
+}
+
+static void cloud_sigma(void *user, hrm_real t, hrm_real out[HRM_CHANNELS], int scattering)
+{
+    const cloud_params *p = BENCH_PARAMS(cloud_params, user);
+    double rho = (double)cloud_rho(p, LD(t)), f = scattering ? p->albedo : 1 - p->albedo;
+    int c;
+    for (c = 0; c < 3; ++c) out[c] = (hrm_real)(f * p->k[c] * rho);
+}
+
+static void cloud_sigma_a(void *user, hrm_real t, hrm_real out[HRM_CHANNELS])
+{
+    bench_count(user, BENCH_CB_SIGMA_A, t);
+    cloud_sigma(user, t, out, 0);
+}
+
+static void cloud_sigma_s(void *user, hrm_real t, hrm_real out[HRM_CHANNELS])
+{
+    bench_count(user, BENCH_CB_SIGMA_S, t);
+    cloud_sigma(user, t, out, 1);
+}
+
+static void cloud_li(void *user, hrm_real t, hrm_real out[HRM_CHANNELS])
+{
+    const cloud_params *p = BENCH_PARAMS(cloud_params, user);
+    double rho = (double)cloud_rho(p, LD(t));
+    int c;
+    bench_count(user, BENCH_CB_LI, t);
+    for (c = 0; c < 3; ++c) out[c] = (hrm_real)(p->E[c] * BENCH_PHASE * exp(-p->ell * p->k[c] * rho));
+}
+
+static void cloud_build(const void *params, hrm_medium *m)
+{
+    (void)params;
+    m->sigma_a = cloud_sigma_a;
+    m->sigma_s = cloud_sigma_s;
+    m->Li = cloud_li;
+}
+
+static void cloud_integrand(const void *params, long double t0, long double s,
+                            long double out[HRM_CHANNELS])
+{
+    const cloud_params *p = (const cloud_params *)params;
+    long double rho = cloud_rho(p, s), tau1 = cloud_rho_integral(p, s) - cloud_rho_integral(p, t0);
+    int c;
+    for (c = 0; c < 3; ++c) {
+        long double k = LD(p->k[c]);
+        long double li = LD(p->E[c]) * BENCH_PHASE_L * expl(-LD(p->ell) * k * rho);
+        out[c] = expl(-k * tau1) * LD(p->albedo) * k * rho * li;
+    }
+}
+
+static void cloud_print(FILE *out, const void *params)
+{
+    const cloud_params *p = (const cloud_params *)params;
+    fprintf(out, "  callbacks only: sigma_t = k rho(s), ");
+    bench_print_vec(out, "k", p->k);
+    fprintf(out, ", albedo %g,\n  rho(s) = 1 + %g sin(%g s + %g) + %g sin(%g s + %g),"
+                 " tau(T) = k * %.4g\n  Li = E p exp(-%g sigma_t(s)), ",
+            p->albedo, p->a1, p->w1, p->f1, p->a2, p->w2, p->f2,
+            (double)cloud_rho_integral(p, 10.0L), p->ell);
+    bench_print_vec(out, "E", p->E);
+    fprintf(out, "\n");
+}
+
 const bench_scene bench_scenes[] = {
     {.name = "directional",
      .description = "homogeneous medium, directional light whose path through the medium grows along the ray",
@@ -1102,6 +1198,11 @@ const bench_scene bench_scenes[] = {
      .params = &slab_scene, .t0 = 0.0, .t1 = 10.0, .smooth = 0,
      .natural_warp = BENCH_WARP_DISTANCE, .print_params = slab_print, .build = slab_build,
      .integrand = slab_integrand, .split_points = slab_split},
+    {.name = "cloud",
+     .description = "an optically thick heterogeneous cloud (sigma_t T ~ 100, 250, 500) from callbacks, directional light",
+     .params = &cloud_scene, .t0 = 0.0, .t1 = 10.0, .smooth = 1,
+     .natural_warp = BENCH_WARP_DISTANCE, .print_params = cloud_print, .build = cloud_build,
+     .integrand = cloud_integrand, .ref_panel = 0.005L},
 };
 
 const int bench_scene_count = (int)(sizeof bench_scenes / sizeof bench_scenes[0]);
