@@ -451,8 +451,11 @@
      polynomial sources that rise are exact as with 1, falling ones are
      not (their decay is fitted as an exponential);
    - each step's sum stays between its nodes' least and largest fitted
-     value times the exponential's integral: L >= 0, and L <= sup(S /
-     sigma_t) (1 - Tr) in a homogeneous medium, however thick;
+     value times the exponential's integral, and under a warp also
+     between their least and largest S times the step's integral of Tr
+     in t (Tr exponential between nodes; widened by the spread of its
+     rates where sigma_t varies): L >= 0, and L <= sup(S / sigma_t) (1 -
+     Tr) in a homogeneous medium, however thick, with or without a warp;
    - sigma_t -> 0 uses the moments' series (no 0/0), sigma_t h -> inf
      their asymptotic form (no overflow); with 2, the fitted values are
      taken in logarithms relative to the step's first node (no overflow
@@ -2579,6 +2582,61 @@ static void hrm__msb(hrm_real b, int n, hrm_real s[HRM__EFIT_MAX])
     for (k = 1; k + 1 < n; ++k) s[k + 1] = s[k - 1] - (2 * (hrm_real)k + 1) / b * s[k];
 }
 
+/* Under a warp the fit runs in the warp's variable, where tau bends and
+   ds/dp varies: the bound by the fitted values (S ds/dp) does not bound
+   the step in t (an equiangular step measured 15 times above sup(S /
+   sigma_t) (1 - Tr)). So the step is also kept within the nodes' least
+   and largest S times the integral of Tr over the step in t, Tr taken
+   exponential between neighbouring nodes (and beyond the outer nodes at
+   their neighbours' rate, for Gauss nodes): exact in a homogeneous
+   medium, where it gives L <= sup(S / sigma_t) (1 - Tr); widened by the
+   spread of those rates elsewhere, so that it never cuts a good value
+   where sigma_t varies. What it cuts is added to un. */
+static void hrm__efit_bound_t(const hrm__efit *F, const hrm__pt *pt, hrm_real hl, int last, int i,
+                              hrm_real *out, hrm_real *un)
+{
+    hrm_real smin = 0, smax = 0, mt = 0, rmin = 0, rmax = 0, d, lo, hi;
+    int j, any = 0;
+    for (j = 0; j < F->n; ++j) {
+        hrm_real S = pt[j].J > 0 ? pt[j].gq[i] / pt[j].J : 0;
+        if (j == 0 || S < smin) smin = S;
+        if (j == 0 || S > smax) smax = S;
+    }
+    for (j = -1; j <= last; ++j) {
+        /* the piece from node j to j + 1; -1 and last: the outer pieces */
+        int k = j < 0 ? 0 : j == last ? last - 1 : j;
+        hrm_real dt = pt[k + 1].off - pt[k].off, rate, len, tl;
+        rate = dt > 0 ? (pt[k + 1].tau[i] - pt[k].tau[i]) / dt : 0;
+        if (!(rate > 0)) rate = 0;
+        if (j < 0) {
+            len = pt[0].J * hl * (F->y[0] + 1);
+            tl = pt[0].tau[i] - rate * len;
+        } else if (j == last) {
+            len = pt[last].J * hl * (1 - F->y[last]);
+            tl = pt[last].tau[i];
+        } else {
+            len = dt;
+            tl = pt[j].tau[i];
+        }
+        if (!(len > 0)) continue;
+        mt += HRM_EXP(-tl) * len * hrm__phi1(rate * len);
+        if (!any || rate < rmin) rmin = rate;
+        if (!any || rate > rmax) rmax = rate;
+        any = 1;
+    }
+    d = rmin > 0 ? (rmax - rmin) / rmin : rmax > 0 ? 1 : 0;
+    if (d > 1) d = 1;
+    lo = smin * mt * (1 - d);
+    hi = smax * mt * (1 + d);
+    if (*out < lo) {
+        *un += lo - *out;
+        *out = lo;
+    } else if (*out > hi) {
+        *un += *out - hi;
+        *out = hi;
+    }
+}
+
 /* One panel of half-width hl (in p) by the fit on its nodes pt[0..n):
    per channel, b is the slope of tau across the nodes per unit y, the
    source times Tr / exp(-b (y + 1)) is interpolated by the nodes'
@@ -2670,6 +2728,7 @@ static void hrm__efit_panel(const hrm__ctx *c, const hrm__efit *F, const hrm__pt
         if (acc > hi * m) acc = hi * m;
         out[i] = acc * scale;
         mass[i] = m * scale;
+        if (c->warp != HRM_WARP_NONE) hrm__efit_bound_t(F, pt, hl, last, i, &out[i], &un[i]);
         if (unsure) un[i] += out[i];
     }
 }
