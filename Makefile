@@ -8,12 +8,16 @@
 #   make bench-snapshot   make bench, then refresh the committed snapshot
 #                bench/results/ (summary.md, timing.md, the figures but
 #                time.svg) from bench/out/; run it on request, and commit
+#   make fuzz    the libFuzzer harness tests/fuzz.c (clang, ASan, UBSan), run
+#                for FUZZ_TIME seconds (default 60) from the seed corpus
+#                tests/corpus/; findings in build/fuzz/crashes/ (needs clang's
+#                libFuzzer: Debian package libfuzzer-14-dev where missing)
 #   make examples
 CC      ?= cc
 WARN    = -Wall -Wextra -pedantic -Werror -Wshadow -Wdouble-promotion
 BUILD   = build
 
-.PHONY: all test bench bench-quick bench-snapshot examples clean
+.PHONY: all test bench bench-quick bench-snapshot examples fuzz clean
 
 all: test
 
@@ -48,6 +52,20 @@ bench-snapshot: bench
 	for f in bench/out/*.svg; do \
 	    case $$f in */time.svg) ;; *) cp $$f bench/results/ ;; esac; \
 	done
+
+FUZZ_TIME ?= 60
+$(BUILD)/fuzz/fuzz: tests/fuzz.c hrm.h
+	@mkdir -p $(BUILD)/fuzz
+	clang -std=c99 -O1 -g $(WARN) -I. -DFUZZ_LIBFUZZER -fsanitize=fuzzer,address,undefined \
+	    -fno-sanitize-recover=all tests/fuzz.c -o $@ -lm
+
+# the working corpus (build/fuzz/corpus) starts from the committed seeds;
+# a crash found is a file in build/fuzz/crashes/: fix its cause, then commit
+# it to tests/corpus/, which make test replays
+fuzz: $(BUILD)/fuzz/fuzz
+	@mkdir -p $(BUILD)/fuzz/corpus $(BUILD)/fuzz/crashes
+	cp tests/corpus/* $(BUILD)/fuzz/corpus/
+	cd $(BUILD)/fuzz && ./fuzz -max_total_time=$(FUZZ_TIME) -artifact_prefix=crashes/ corpus
 
 $(BUILD)/example_ray: examples/ray.c hrm.h
 	@mkdir -p $(BUILD)

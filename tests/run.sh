@@ -46,21 +46,23 @@ run() {
     tally "$name" "$B/$name"
 }
 
-# tally NAME BINARY: run it, add its "N passed, N failed" line to the sums
+# tally NAME BINARY [ARGS...]: run it, add its "N passed, N failed" line to the sums
 tally() {
-    out=$("$2" 2>&1)
+    tname=$1
+    shift
+    out=$("$@" 2>&1)
     code=$?
     line=$(printf '%s\n' "$out" | grep -E '^[0-9]+ passed, [0-9]+ failed' | tail -n 1)
     if [ -z "$line" ] || [ $code -ne 0 ]; then
         printf '%s\n' "$out" | grep -E 'FAIL|error|runtime' | head -n 40
-        echo "$1: exit $code, summary '${line}'"
+        echo "$tname: exit $code, summary '${line}'"
     fi
     if [ -z "$line" ]; then fail=$((fail + 1)); return; fi
     p=${line%% passed*}
     f=${line#*passed, }; f=${f%% failed*}
     if [ $code -ne 0 ] && [ "$f" -eq 0 ]; then f=1; fi
     pass=$((pass + p)); fail=$((fail + f))
-    echo "$1: $line"
+    echo "$tname: $line"
 }
 
 run gcc-c99-O0          gcc   -std=c99 -O0 $WARN
@@ -86,6 +88,16 @@ if gcc -std=c99 -O2 $WARN -I. -c tests/linkage_impl.c -o "$B/linkage_impl.o" 2> 
     tally linkage-c-impl-cxx-user "$B/linkage"
 else
     echo "linkage: build failed"; cat "$B/linkage.log"; fail=$((fail + 1))
+fi
+
+# The fuzz harness without libFuzzer: every input of the seed corpus and
+# every regression case committed there (make fuzz explains) replayed
+# against the manual's promises.
+configs=$((configs + 1))
+if gcc -std=c99 -O2 $WARN -I. tests/fuzz.c -o "$B/fuzz-replay" -lm 2> "$B/fuzz-replay.log"; then
+    tally fuzz-corpus-replay "$B/fuzz-replay" tests/corpus/*
+else
+    echo "fuzz-replay: build failed"; cat "$B/fuzz-replay.log"; fail=$((fail + 1))
 fi
 
 # The quick start in hrm.h's top comment compiles and runs as printed.
