@@ -112,6 +112,16 @@
    far) or a positive warning (a usable estimate that missed what was asked;
    the result holds it). hrm_status_string() names each. Bad input never
    aborts, never crashes and never writes anything but the result.
+   Range: with R = the largest HRM_REAL / 1024 / max(1, t1 - t0) (an
+   infinite ray counts as 1), every sigma coefficient, every source sigma_a
+   Le + sigma_s Li, and each of them times a warp's dt/du stays within R at
+   every sample; t1 - t0 is finite for finite ends. Within it no sum of any
+   rule overflows (a factor 1024 to spare); beyond it the call returns
+   HRM_ERR_RANGE (a constant coefficient: before any evaluation; a
+   callback's: at that sample) rather than inf or NaN. In double R is
+   1.7e305 on a unit ray, in float 3.3e35. The RTE form's explicit steps
+   past their stability limit grow without bound: a solution beyond R ends
+   the solve with HRM_ERR_RANGE too (see ACCURACY AND COST, RTE form).
 
    ==========================================================================
    THREAD SAFETY
@@ -205,7 +215,12 @@
        instead), marched from t1 to t0 in the direction light travels. Explicit
        methods blow up once h*sigma_t passes their stability limit (2 for
        Euler, about 2.79 for RK4, 0.3 for Adams-Bashforth 4): kept so that
-       the stiffness the papers report can be reproduced and measured.
+       the stiffness the papers report can be reproduced and measured. The
+       result then grows with (h sigma_t)^N, finite but meaningless, until
+       it passes the range (ERRORS): HRM_ERR_RANGE, L = 0, Tr = 1. The
+       Runge-Kutta pairs keep h sigma_t within their limit by rejecting
+       steps; a budget that runs out forces the rest unchecked
+       (HRM_WARN_MAX_EVALS), and those steps can blow up alike.
    Neither form is accurate when one step spans many mean free paths; the
    optical-depth form only stays bounded there.
 
@@ -597,7 +612,8 @@ typedef HRM_REAL hrm_real;
     X(HRM_ERR_CALLBACK_VALUE, -7, "a callback returned NaN, an infinity, a negative coefficient or a transmittance outside [0,1]") \
     X(HRM_ERR_BAD_WARP, -8, "warp parameters invalid: sigma_ref or D negative or not finite, a user warp without its callbacks or not increasing") \
     X(HRM_ERR_SINGULAR, -9, "the equiangular light lies on the ray within [t0, t1] (D = 0): the integral diverges") \
-    X(HRM_ERR_BAD_BREAKS, -10, "breakpoints: nbreaks negative or above HRM_MAX_BREAKS, NULL with nbreaks > 0, or an entry not finite, not increasing or outside [t0, t1]")
+    X(HRM_ERR_BAD_BREAKS, -10, "breakpoints: nbreaks negative or above HRM_MAX_BREAKS, NULL with nbreaks > 0, or an entry not finite, not increasing or outside [t0, t1]") \
+    X(HRM_ERR_RANGE, -11, "beyond HRM_REAL's range: a sample's sigma_t or source times the ray's length, t1 - t0 itself, or the RTE form's solution (explicit steps past their stability limit)")
 
 typedef enum hrm_status {
 #define HRM__STATUS_ENUM(name, value, text) name = value,
@@ -1309,6 +1325,7 @@ typedef struct hrm__ctx {
     hrm_status warning;    /* first warning, else HRM_OK */
     hrm_real rtol, atol, h_min, h_max; /* resolved; steps in parameter units */
     long max_evals;
+    hrm_real range;        /* hrm__range(T): coefficients, sources, state */
     uint64_t rng;
     hrm_stats stats;
     hrm_warp_kind warp;    /* the warp in use, after fallbacks */
@@ -1341,8 +1358,33 @@ static void hrm__check(hrm__ctx *c, hrm_real *v, int kind)
         if (!ok) {
             if (c->status == HRM_OK) c->status = HRM_ERR_CALLBACK_VALUE;
             v[i] = 0;
+        } else if (kind == 1 && v[i] > c->range) {
+            if (c->status == HRM_OK) c->status = HRM_ERR_RANGE;
+            v[i] = 0;
         }
     }
+}
+
+/* The range every rule's sums stay finite in (ERRORS): a coefficient or
+   source at most the largest real / 1024 over the ray's length (at least
+   1; an infinite ray counts as 1): tau, a step's source times its length,
+   their sums over the ray and the estimates' differences all fit with a
+   factor 1024 to spare (a finite coefficient of 1e308 made S Tr h inf - inf
+   in ten rules). */
+static hrm_real hrm__range(hrm_real T)
+{
+    hrm_real big = HRM__IS_FLOAT ? HRM__R(FLT_MAX) : HRM__R(DBL_MAX);
+    return big / 1024 / (HRM__FINITE(T) && T > 1 ? T : 1);
+}
+
+/* The RTE form's explicit steps past their stability limit grow without
+   bound: a state beyond the range ends the solve (HRM_ERR_RANGE) before it
+   turns inf, then NaN (a step size from NaN never ended the loop). */
+static void hrm__state_check(hrm__ctx *c, const hrm_real y[HRM__NY])
+{
+    int i;
+    for (i = 0; i < HRM__NY; ++i)
+        if (!(HRM_FABS(y[i]) <= c->range) && c->status == HRM_OK) c->status = HRM_ERR_RANGE;
 }
 
 /* The sigma callbacks at s, those that are wanted and present (absent ones
@@ -1392,14 +1434,22 @@ static hrm_real hrm__inside(hrm_real s, int dir)
     return s + (hrm_real)dir * (8 * HRM__EPS * HRM_FABS(s) + tiny);
 }
 
+/* Never outside the ray: a jump within 8 ulps of t0 put a piece's inner
+   end, moved inside it, before t0. */
+static hrm_real hrm__in_ray(const hrm__ctx *c, hrm_real s)
+{
+    return s < c->t0 ? c->t0 : s > c->t1 ? c->t1 : s;
+}
+
 static hrm_real hrm__side(const hrm__ctx *c, hrm_real s)
 {
     hrm_real lo, hi;
     if (c->s_lo == -HRM__R(HUGE_VAL) && c->s_hi == HRM__R(HUGE_VAL)) return s;
     lo = c->s_lo == -HRM__R(HUGE_VAL) ? c->s_lo : hrm__inside(c->s_lo, 1);
     hi = c->s_hi == HRM__R(HUGE_VAL) ? c->s_hi : hrm__inside(c->s_hi, -1);
-    if (lo > hi) return c->s_lo / 2 + c->s_hi / 2; /* a piece of a few ulps */
-    return s < lo ? lo : s > hi ? hi : s;
+    if (lo > hi) s = c->s_lo / 2 + c->s_hi / 2; /* a piece of a few ulps */
+    else s = s < lo ? lo : s > hi ? hi : s;
+    return hrm__in_ray(c, s);
 }
 
 /* Whether an offset is one of the breakpoints'. */
@@ -1503,7 +1553,7 @@ static void hrm__sigma_t_at(hrm__ctx *c, hrm_real off, int side, hrm_real st[HRM
 {
     hrm_real sa[HRM__CH], ss[HRM__CH], s = hrm__abscissa(c, off);
     /* a panel's end at a breakpoint: sigma_t on the panel's side */
-    if (side && hrm__is_break(c, off)) s = hrm__inside(s, side);
+    if (side && hrm__is_break(c, off)) s = hrm__in_ray(c, hrm__inside(s, side));
     c->stats.medium_evals += hrm__coeffs(c, s, 0, 0, 1, sa, ss, st);
 }
 
@@ -2057,7 +2107,9 @@ static hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_warp *w)
             if (s == 0) s = x > 0 ? tx / x : 0;
             if (s > cap) s = cap;
         }
-        if (!(s >= tiny)) { /* zero or denormal: no warp */
+        /* zero or denormal, or the identity to round-off (u's range
+           s T below eps underflows, its Jacobian 1 / s overflows): none */
+        if (!(s >= tiny) || (!inf && s * T < HRM__EPS)) {
             c->warp = HRM_WARP_NONE;
             break;
         }
@@ -2378,6 +2430,12 @@ static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
         }
     }
     for (i = 0; i < HRM__CH; ++i) {
+        if (!(HRM_FABS(q[i]) <= c->range)) {
+            if (c->status == HRM_OK) c->status = HRM_ERR_RANGE;
+            q[i] = 0;
+        }
+    }
+    for (i = 0; i < HRM__CH; ++i) {
         /* S / sigma_t, the weighted mean of Le and Li by sigma_a and
            sigma_s; where sigma_t is not known here, the larger of the two */
         hrm_real b = sig_known && sig[i] > 0 ? q[i] / sig[i] : vmax[i];
@@ -2387,6 +2445,10 @@ static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
     for (i = 0; i < HRM__CH; ++i) {
         pt->gq[i] = q[i] * J;
         pt->gs[i] = c->need_st ? st[i] * J : 0; /* a closed form has tau already */
+        if (!(HRM_FABS(pt->gq[i]) <= c->range && HRM_FABS(pt->gs[i]) <= c->range)) {
+            if (c->status == HRM_OK) c->status = HRM_ERR_RANGE; /* a warp's Jacobian */
+            pt->gq[i] = pt->gs[i] = 0;
+        }
     }
     if (c->use_memo) {
         int k = s == c->s_end ? HRM__MEMO : c->memo_next;
@@ -2701,6 +2763,9 @@ static void hrm__efit_panel(const hrm__ctx *c, const hrm__efit *F, const hrm__pt
             whole = last == n - 1 && j > last && bf > b && bf < HRM__R(HUGE_VAL);
             if (whole) b = bf;
         }
+        /* tau at y = -1 on the line not below 0 (exp(-tref) <= 1): the
+           least slope can overshoot where tau bends before the first node */
+        if (!whole && b * (F->y[0] + 1) > pt[0].tau[i]) b = pt[0].tau[i] / (F->y[0] + 1);
         tref = pt[0].tau[i] - b * (F->y[0] + 1);
         if (b != b_prev) { /* the weights, once per slope (grey media: once) */
             hrm__msb(b, n, s);
@@ -2711,7 +2776,9 @@ static void hrm__efit_panel(const hrm__ctx *c, const hrm__efit *F, const hrm__pt
             b_prev = b;
         }
         for (j = 0; j < n; ++j) {
-            hrm_real x = j > last ? 0 : -(pt[j].tau[i] - tref - b * (F->y[j] + 1));
+            /* relative to the first node, where x = 0 exactly (tref's
+               rounding at tau ~ 1e21 was 1e5: exp of it overflowed) */
+            hrm_real x = j > last ? 0 : -((pt[j].tau[i] - pt[0].tau[i]) - b * (F->y[j] - F->y[0]));
             /* in logarithms where the source is factored too, relative to
                the first node: at most 1, never overflowing */
             if (whole) g[j][i] = HRM_EXP(lf[j] - lf[0] + b * (F->y[j] - F->y[0]));
@@ -3178,6 +3245,7 @@ static void hrm__ivp_fixed(hrm__ctx *c, const hrm__tableau *tb, int ab4, int N,
             }
         }
         c->stats.steps++;
+        hrm__state_check(c, y);
         if (c->status != HRM_OK) return;
     }
 }
@@ -3384,6 +3452,7 @@ static void hrm__ivp_adaptive(hrm__ctx *c, const hrm__tableau *tb, hrm_control c
         if (hrm__rk_step(c, tb, &start, &end, p, q, y, ynew, err, &ni,
                          control == HRM_CONTROL_PI ? both : 0) == 0)
             have = 0;
+        hrm__state_check(c, ynew);
         if (c->status != HRM_OK) return;
         if (first) {
             /* The first attempt's increment: a part of the total, not
@@ -4433,6 +4502,8 @@ static hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, const hrm_medium *m, 
     c->t0 = t0;
     c->t1 = t1;
     c->T = t1 - t0;
+    c->range = hrm__range(c->T);
+    if (HRM__FINITE(t1) && !HRM__FINITE(c->T)) return HRM_ERR_RANGE;
     c->rng = o->seed;
     c->s_lo = -HRM__R(HUGE_VAL);
     c->s_hi = HRM__R(HUGE_VAL);
@@ -4476,6 +4547,7 @@ static hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, const hrm_medium *m, 
             if (!(HRM__FINITE(c->sa[i]) && HRM__FINITE(c->ss[i]) && c->sa[i] >= 0 &&
                   c->ss[i] >= 0 && HRM__FINITE(c->st[i])))
                 return HRM_ERR_BAD_MEDIUM;
+            if (c->st[i] > c->range) return HRM_ERR_RANGE;
         }
     }
     c->use_le = !tr_only && m->Le && (c->per_length || c->homog || m->sigma_a);
