@@ -49,6 +49,7 @@ void warp_tests(void);
 void transmittance_tests(void);
 void breaks_tests(void);
 void exponential_tests(void);
+void extremes_tests(void);
 
 /* ------------------------------------------------------------------------
    Precision and small numerics

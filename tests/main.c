@@ -16,5 +16,6 @@ int main(void)
     transmittance_tests();
     breaks_tests();
     exponential_tests();
+    extremes_tests();
     return harness_summary();
 }

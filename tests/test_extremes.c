@@ -1,0 +1,692 @@
+/* test_extremes.c - the extremes grid: a deterministic subsample (about
+   3500 solves) of the product of every method and form, every warp, both
+   ways of giving the medium, three lights, optical depths 1e-12 to 1e6,
+   rays 1e-9 to 1e9 long starting up to 1e9 from the origin, rtol 1e-1 to
+   1e-14 (N for the fixed-step methods) and an equiangular D from 1e-12,
+   each solve checked against every promise of the manual that applies to
+   it. Violations are counted per promise and each count must be 0; with
+   HRM_TEST_VERBOSE set the first few cases of each are printed whole.
+
+   The medium is homogeneous, sigma_a = 0.4 k sigma and sigma_s = 0.6 k
+   sigma in channel c (k = 1 when grey, else 1 + c / HRM_CHANNELS), given
+   as constants (HRM_MEDIUM_HOMOGENEOUS, the sigma callbacks installed too:
+   the manual says they are then ignored) or through the sigma callbacks.
+   Li is constant, peaked (a point light, 1 / (D^2 + (t - delta)^2), delta
+   at 0.4 of the ray) or shadowed (zero over [0.3, 0.55) of the ray); Le
+   constant or absent. */
+#include "common.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+
+/* ------------------------------------------------------------------------
+   The grid
+   ------------------------------------------------------------------------ */
+/* (t0, T): in double 1e9 + 1e-9 is 1e9 (an empty ray) and 1e9 + 1e-6 is
+   8 ulps of t; in float those and 1e9 + 1 are empty (t's ulp is 64). */
+#define XG_NI 7
+static const double xg_t0[XG_NI] = {0, 0, 0, 1e9, 1e9, 1e9, 1e9};
+static const double xg_T[XG_NI] = {1e-9, 1, 1e9, 1e-9, 1e-6, 1, 1e9};
+#define XG_ND 6
+static const double xg_tau[XG_ND] = {1e-12, 1e-3, 1, 1e2, 1e4, 1e6}; /* sigma_t T */
+#define XG_NR 4
+static const double xg_rtol[XG_NR] = {1e-1, 1e-4, 1e-8, 1e-14};
+static const int xg_steps[XG_NR] = {1, 3, 32, 256}; /* N of the fixed-step methods */
+#define XG_NW 3                                     /* D: 1e-12 (absolute), 1e-4 T, 0.3 T */
+
+enum { XW_NONE, XW_DISTANCE, XW_EQUIANGULAR, XW_USER, XW_COUNT };
+enum { XL_CONST, XL_PEAK, XL_SHADOW, XL_COUNT };
+/* user warps: t = t0 + T (u + u^2) / 2; t = t0 + T u (the plain ray); the
+   equiangular map t = delta + D tan u (the equiangular warp) */
+enum { XU_QUADRATIC, XU_AFFINE, XU_TAN, XU_COUNT };
+static const char *const xg_warp_name[XW_COUNT] = {"none", "distance", "equiangular", "user"};
+static const char *const xg_user_name[XU_COUNT] = {" (quadratic)", " (affine)", " (tan)"};
+static const char *const xg_light_name[XL_COUNT] = {"const", "peak", "shadow"};
+
+#ifndef XG_SALT
+#define XG_SALT 0 /* another subsample of the same product */
+#endif
+#define XG_KEEP 64 /* one case in XG_KEEP of the product is solved */
+#define XG_MAX_EVALS 20000L
+/* A solve calls the user warp twice per node (t_of_u, dt_du), evaluated
+   or remembered. An adaptive method's attempts (steps or intervals,
+   accepted or rejected) count against max_evals like its evaluations
+   (hrm's budget bounds the work where nodes fall on remembered abscissae
+   and cost no evaluation), and an attempt has at most 15 nodes (K15; a
+   pair at most 10 stages): 2 x 15 x max_evals calls, plus the pieces'
+   unchecked finishes. Past 32 max_evals calls it has run away; the warp
+   then returns a negative dt/du, which stops it (HRM_ERR_CALLBACK_VALUE). */
+#define XG_WATCHDOG (32 * XG_MAX_EVALS)
+/* attempts past max_evals: a budget that runs out still finishes each
+   piece, at most a stack of HRM_MAX_DEPTH intervals or 64 forced steps
+   each, and the verified pass solves once more (TOLERANCES) */
+#define XG_WORK_EXTRA 256L
+
+typedef struct xg_case {
+    hrm_method method;
+    hrm_form form;
+    int warp, user, callbacks, light, le, grey, expo, gk_local, gk_k7;
+    int breaks; /* the shadow's edges given as breakpoints (as a renderer
+                   that knows its occluder gives them) */
+    int ii, di, ri, wi; /* indices of (t0, T), tau, rtol or N, D */
+    unsigned long id;   /* its index in the product (XG_ONLY=id runs it alone) */
+} xg_case;
+
+/* The scene of one case, and what its callbacks saw. */
+typedef struct xg_scene {
+    hrm_real sa[NCH], ss[NCH], le[NCH], li[NCH];
+    int light, user, ends;
+    double ta, tb, Teff;     /* (double) of the hrm_real ends; tb - ta */
+    double delta, D, lo, hi; /* the point light; the shadow [lo, hi) */
+    double ua, ub;           /* the user warp's u(ta), u(tb), as hrm_real */
+    long n_sa, n_ss, n_le, n_li, nonfinite, warp_calls, warp_bad;
+    double tmin, tmax, li_max[NCH];
+    hrm_real brk[2];
+} xg_scene;
+
+/* ------------------------------------------------------------------------
+   Callbacks: each records its abscissa
+   ------------------------------------------------------------------------ */
+static void xg_touch(xg_scene *s, hrm_real t, long *count)
+{
+    double x = (double)t;
+    ++*count;
+    if (!finite_d(x)) s->nonfinite++;
+    if (x < s->tmin) s->tmin = x;
+    if (x > s->tmax) s->tmax = x;
+}
+
+static void xg_sa(void *u, hrm_real t, hrm_real out[NCH])
+{
+    xg_scene *s = (xg_scene *)u;
+    xg_touch(s, t, &s->n_sa);
+    memcpy(out, s->sa, sizeof s->sa);
+}
+
+static void xg_ss(void *u, hrm_real t, hrm_real out[NCH])
+{
+    xg_scene *s = (xg_scene *)u;
+    xg_touch(s, t, &s->n_ss);
+    memcpy(out, s->ss, sizeof s->ss);
+}
+
+static void xg_le(void *u, hrm_real t, hrm_real out[NCH])
+{
+    xg_scene *s = (xg_scene *)u;
+    xg_touch(s, t, &s->n_le);
+    memcpy(out, s->le, sizeof s->le);
+}
+
+static void xg_li(void *u, hrm_real t, hrm_real out[NCH])
+{
+    xg_scene *s = (xg_scene *)u;
+    double x = (double)t, f = 1;
+    int c;
+    xg_touch(s, t, &s->n_li);
+    if (s->light == XL_PEAK) f = 1 / (s->D * s->D + (x - s->delta) * (x - s->delta));
+    if (s->light == XL_SHADOW && x >= s->lo && x < s->hi) f = 0;
+    for (c = 0; c < NCH; ++c) {
+        out[c] = (hrm_real)((double)s->li[c] * f);
+        if ((double)out[c] > s->li_max[c]) s->li_max[c] = (double)out[c];
+    }
+}
+
+/* The user warp's u, checked: finite, within [ua, ub] up to 4 ulps. */
+static double xg_u(xg_scene *s, hrm_real v)
+{
+    double x = (double)v, slack = 4 * real_eps() * (fabs(s->ua) > fabs(s->ub) ? fabs(s->ua) : fabs(s->ub));
+    s->warp_calls++;
+    if (!finite_d(x) || x < s->ua - slack || x > s->ub + slack) s->warp_bad++;
+    return x;
+}
+
+/* The tan warp as hrm's own equiangular one: cos u from the nearer end's
+   exact cosine and sine, t from that end (delta + D tan u itself puts the
+   far end 1e-4 T off when D = 1e-12 T). Returns cos u. */
+static double xg_tan(const xg_scene *s, double x, double *t)
+{
+    double d = x - s->ua, e = s->ub - x, cp;
+    double ra = hypot(s->ta - s->delta, s->D), rb = hypot(s->tb - s->delta, s->D);
+    if (d <= e) {
+        cp = s->D / ra * cos(d) - (s->ta - s->delta) / ra * sin(d);
+        *t = s->ta + ra * sin(d) / cp;
+    } else {
+        cp = s->D / rb * cos(e) + (s->tb - s->delta) / rb * sin(e);
+        *t = s->tb - rb * sin(e) / cp;
+    }
+    return cp;
+}
+
+static hrm_real xg_t_of_u(void *u, hrm_real v)
+{
+    xg_scene *s = (xg_scene *)u;
+    double x = xg_u(s, v), t = s->ta + s->Teff * (s->user == XU_AFFINE ? x : (x + x * x) / 2);
+    if (s->user == XU_TAN) xg_tan(s, x, &t);
+    return (hrm_real)t;
+}
+
+static hrm_real xg_dt_du(void *u, hrm_real v)
+{
+    xg_scene *s = (xg_scene *)u;
+    double x = xg_u(s, v), t, cp;
+    if (s->warp_calls > XG_WATCHDOG) return -1;
+    if (s->user != XU_TAN) return (hrm_real)(s->Teff * (s->user == XU_AFFINE ? 1 : 0.5 + x));
+    cp = xg_tan(s, x, &t);
+    return (hrm_real)(s->D / (cp * cp));
+}
+
+static double xg_u_of(const xg_scene *s, double t)
+{
+    double y = (t - s->ta) / s->Teff;
+    if (s->ends && t == s->ta) return s->ua; /* the ends' u as hrm_real: d, e exact */
+    if (s->ends && t == s->tb) return s->ub;
+    if (s->user == XU_TAN) return atan2(t - s->delta, s->D);
+    y = y > 0 ? y : 0;
+    return s->user == XU_AFFINE ? y : 4 * y / (1 + sqrt(1 + 8 * y)); /* u^2 + u = 2 y */
+}
+
+static hrm_real xg_u_of_t(void *u, hrm_real t) { return (hrm_real)xg_u_of((const xg_scene *)u, (double)t); }
+
+/* ------------------------------------------------------------------------
+   A case: its scene, medium and options
+   ------------------------------------------------------------------------ */
+static int xg_fixed(hrm_method m) { return !is_adaptive(m); }
+
+/* x rounded to hrm_real. volatile: GCC 12.2 at -O2 vectorizes two
+   adjacent stores of (double)(float)x and drops both round trips. */
+static double xg_real(double x)
+{
+    volatile hrm_real r = (hrm_real)x;
+    return (double)r;
+}
+
+/* The ray's length as the hrm_real ends make it (T where they meet), D. */
+static double xg_len(const xg_case *k)
+{
+    double T = xg_real(xg_t0[k->ii] + xg_T[k->ii]) - xg_real(xg_t0[k->ii]);
+    return T > 0 ? T : xg_T[k->ii];
+}
+
+static double xg_Dist(const xg_case *k)
+{
+    return xg_real(k->wi == 0 ? 1e-12 : (k->wi == 1 ? 1e-4 : 0.3) * xg_len(k));
+}
+
+/* The tan warp where u resolves the ray (one rounding of u near an end
+   moves t by about (T / D) eps T), else the quadratic one. */
+static int xg_user(const xg_case *k)
+{
+    return k->user == XU_TAN && xg_Dist(k) < 16 * real_eps() * xg_len(k) ? XU_QUADRATIC : k->user;
+}
+
+static hrm_status xg_solve(const xg_case *k, int callbacks, xg_scene *s, hrm_result *r)
+{
+    double sig = xg_tau[k->di] / xg_len(k);
+    hrm_medium m;
+    hrm_options o = hrm_default_options(k->method);
+    int c;
+    memset(s, 0, sizeof *s);
+    memset(&m, 0, sizeof m);
+    s->ta = xg_real(xg_t0[k->ii]);
+    s->tb = xg_real(xg_t0[k->ii] + xg_T[k->ii]);
+    s->Teff = s->tb - s->ta;
+    for (c = 0; c < NCH; ++c) {
+        double f = k->grey ? 1 : 1 + channel_frac(c);
+        s->sa[c] = m.const_sigma_a[c] = (hrm_real)(0.4 * sig * f);
+        s->ss[c] = m.const_sigma_s[c] = (hrm_real)(0.6 * sig * f);
+        s->le[c] = (hrm_real)(1 + 0.5 * channel_frac(c));
+        s->li[c] = (hrm_real)(2 - 0.5 * channel_frac(c));
+    }
+    s->light = k->light;
+    s->user = xg_user(k);
+    s->delta = xg_real(s->ta + 0.4 * s->Teff);
+    s->D = xg_Dist(k);
+    s->lo = s->ta + 0.3 * s->Teff;
+    s->hi = s->ta + 0.55 * s->Teff;
+    s->tmin = HUGE_VAL;
+    s->tmax = -HUGE_VAL;
+    s->ua = xg_real(xg_u_of(s, s->ta));
+    s->ub = xg_real(xg_u_of(s, s->tb));
+    s->ends = 1;
+    m.user = s;
+    m.sigma_a = xg_sa; /* ignored by a homogeneous medium */
+    m.sigma_s = xg_ss;
+    m.Li = xg_li;
+    if (k->le) m.Le = xg_le;
+    if (!callbacks) m.flags = HRM_MEDIUM_HOMOGENEOUS;
+
+    o.form = k->form;
+    o.max_evals = XG_MAX_EVALS;
+    if (xg_fixed(k->method)) o.steps = xg_steps[k->ri];
+    else o.rtol = (hrm_real)xg_rtol[k->ri];
+    o.exponential = k->expo;
+    o.gk_mode = k->gk_local ? HRM_GK_LOCAL : HRM_GK_GLOBAL;
+    o.gk_rule = k->gk_k7 ? HRM_GK_K7 : HRM_GK_K15;
+    o.warp.kind = k->warp == XW_DISTANCE ? HRM_WARP_DISTANCE /* sigma_ref 0: hrm's */
+                : k->warp == XW_EQUIANGULAR ? HRM_WARP_EQUIANGULAR
+                : k->warp == XW_USER ? HRM_WARP_USER : HRM_WARP_NONE;
+    o.warp.delta = (hrm_real)s->delta;
+    o.warp.D = (hrm_real)s->D;
+    o.warp.user = s;
+    if (k->breaks && s->hi > s->lo && s->lo > s->ta && s->hi < s->tb) {
+        s->brk[0] = (hrm_real)s->lo;
+        s->brk[1] = (hrm_real)s->hi;
+        o.breaks = s->brk;
+        o.nbreaks = 2;
+    }
+    o.warp.t_of_u = xg_t_of_u;
+    o.warp.dt_du = xg_dt_du;
+    o.warp.u_of_t = xg_u_of_t;
+    return hrm_solve(&m, (hrm_real)s->ta, (hrm_real)s->tb, &o, r);
+}
+
+static void xg_describe(const xg_case *k, char *buf, size_t n)
+{
+    int gk = k->method == HRM_GAUSS_KRONROD;
+    snprintf(buf, n, "#%lu %s %s, warp %s%s, %s, Li %s%s%s%s%s%s, t0 %g T %g, sigma_t T %g, %s %g, D %s",
+             k->id, hrm_method_name(k->method), k->form == HRM_FORM_RTE ? "rte" : "od", xg_warp_name[k->warp],
+             k->warp == XW_USER ? xg_user_name[xg_user(k)] : "", k->callbacks ? "sigma callbacks" : "constants",
+             xg_light_name[k->light], k->le ? ", Le" : "", k->grey ? ", grey" : "",
+             k->expo == 1 ? ", exponential 1" : k->expo == 2 ? ", exponential 2" : "",
+             gk && k->gk_local ? ", local" : "", gk && k->gk_k7 ? ", K7" : "", xg_t0[k->ii], xg_T[k->ii],
+             xg_tau[k->di], xg_fixed(k->method) ? "N" : "rtol",
+             xg_fixed(k->method) ? (double)xg_steps[k->ri] : xg_rtol[k->ri],
+             k->wi == 0 ? "1e-12" : k->wi == 1 ? "1e-4 T" : "0.3 T");
+}
+
+/* ------------------------------------------------------------------------
+   The promises
+   ------------------------------------------------------------------------ */
+enum { XP_STATUS, XP_FINITE, XP_BOUNDS, XP_ABSCISSA, XP_EVALS, XP_MEDIUM, XP_ACCURACY, XP_PATHS, XP_COUNT };
+static const char *const xg_promise[XP_COUNT] = {
+    "1. a valid status (an error only where documented), its result and estimate",
+    "2. L, Tr and error finite",
+    "3. optical-depth form: 0 <= Tr <= 1, 0 <= L <= its promised bound",
+    "4. callbacks (and the user warp) at finite abscissae within the ray",
+    "5. evaluations and work within the budget, the table's counts",
+    "6. medium evaluations: none when homogeneous, bounded with callbacks",
+    "7. accuracy against the closed form",
+    "8. sigma callbacks give the L and Tr of the constants"};
+
+#ifndef XG_NOTE_MAX
+#define XG_NOTE_MAX 3 /* offending cases printed per promise (verbose) */
+#endif
+/* Medium evaluations with sigma callbacks: at most one per source
+   evaluation (sigma_s to weight Li; sigma_t in the RTE form and for coupled
+   tau), plus the layer's panels (9 for a constant medium), the scan (33)
+   and the distance warp's coarse march; measured at most 285 more than the
+   source evaluations, in both precisions. */
+#define XG_MEDIUM_EXTRA 1000L
+/* The floor of the equiangular warps' round-off: their offsets carry eps
+   of the angle times the light's range; measured at most 2.9 fp_floor
+   (the analytic march, D = 1e-3 T). */
+#define XG_WARP_COND 4
+
+typedef struct xg_tally {
+    long solves, bad[XP_COUNT];
+    long singular, warnings, blowups, ranges; /* statuses seen; documented RTE blow-ups, range */
+    double worst_acc;                 /* the largest error / bound that passed */
+    long max_medium, max_work;        /* medium_evals - evals; steps + rejected */
+} xg_tally;
+
+static void xg_fail(xg_tally *t, int p, const xg_case *k, hrm_status st, const hrm_result *r, const char *why,
+                    double a, double b)
+{
+    char buf[400];
+    if (t->bad[p]++ >= XG_NOTE_MAX || !verbose()) return;
+    xg_describe(k, buf, sizeof buf);
+    NOTE("promise %d: %s [%g vs %g]; %s -> status %d, L0 %.6g, Tr0 %.6g, error0 %.3g, evals %ld, medium %ld", p + 1,
+         why, a, b, buf, (int)st, (double)r->L[0], (double)r->Tr[0], (double)r->error[0], r->stats.evals,
+         r->stats.medium_evals);
+}
+
+/* The evaluations in the manual's table of a fixed-step method. */
+static long xg_fixed_evals(hrm_method m, long N)
+{
+    if (m == HRM_SIMPSON || m == HRM_RK4) return 2 * N + 1;
+    if (m == HRM_ADAMS_BASHFORTH) return N >= 4 ? N + 3 : 2 * N + 1; /* below 4: RK4 steps */
+    return N;
+}
+
+/* The closed form of channel c (constant Li or the shadow, Le constant):
+   int over [0, T] of exp(-sigma_t x) (sigma_a Le + sigma_s Li(x)) dx. */
+static double xg_exact_L(const xg_case *k, const xg_scene *s, int c)
+{
+    double sa = (double)s->sa[c], ss = (double)s->ss[c], st = sa + ss, full = -expm1(-st * s->Teff);
+    double L = k->le ? sa * (double)s->le[c] / st * full : 0;
+    if (k->light == XL_CONST) return L + ss * (double)s->li[c] / st * full;
+    return L + ss * (double)s->li[c] / st *
+                   (-expm1(-st * (s->lo - s->ta)) + exp(-st * (s->hi - s->ta)) * -expm1(-st * (s->tb - s->hi)));
+}
+
+/* The tau_tol of the solve where the layer gives tau (hrm_options: rtol /
+   32 adaptive, 0.01 N^-order fixed-step, at least 64 eps); 0 where tau is
+   exact (constants; the analytic march's coupled tau of a constant medium). */
+static double xg_tau_tol(const xg_case *k, double rtol_eff)
+{
+    static const double order[HRM_METHOD_COUNT] = {0, 2, 4, 0.5, 1, 4, 4, 6, 22, 3, 5, 4, 4, 6, 2};
+    double tol = xg_fixed(k->method) ? 0.01 * pow((double)xg_steps[k->ri], -order[k->method]) : rtol_eff / 32;
+    if (!k->callbacks || k->method == HRM_ANALYTIC_MARCH) return 0;
+    return tol > 64 * real_eps() ? tol : 64 * real_eps();
+}
+
+/* Tr's absolute slack: the smallest normal number (no relative accuracy
+   below it) and, under the distance warp, eps: the warp ends where Tr has
+   fallen to eps / 2, and coupled tau knows Tr only to there. */
+static double xg_tr_slack(const xg_case *k)
+{
+    return (real_is_float() ? (double)FLT_MIN : DBL_MIN) + (k->warp == XW_DISTANCE ? real_eps() : 0);
+}
+
+/* Tr against exp(-tau): round-off fp_floor(16, tau), tau tau_tol from the
+   layer, xg_tr_slack. */
+static int xg_tr_ok(const xg_case *k, double tau, double got, double want, double rtol_eff)
+{
+    return fabs(got - want) <= want * (fp_floor(16, tau) + tau * xg_tau_tol(k, rtol_eff)) + xg_tr_slack(k);
+}
+
+/* 7. Accuracy where the closed form exists (constant Li or the shadow).
+   Tr, whatever the status (xg_tr_ok; the RTE form only with constants:
+   it integrates its own Tr from callbacks). L, optical-depth form (the
+   RTE form promises none), HRM_OK (or only HRM_WARN_RTOL_CLIPPED, then to
+   the clipped rtol): an adaptive method within max(5 rtol, floor) (twice
+   the manual's worst measured 2.3 rtol; the passes here reach 1.4 rtol,
+   and 10 rtol would let L = 0 pass at rtol 0.1); a fixed-step method
+   where the manual promises it exact at any N: the analytic march
+   (constant S / sigma_t, any warp), fitted Simpson (constant source, no
+   warp) and the distance warp under a constant source in the channels as
+   thin as sigma_ref ("exact for any N in a grey homogeneous medium under
+   constant Li"). floor: fp_floor(evals, min(tau, 40)) (beyond 40 Tr < eps),
+   XG_WARP_COND times that under an equiangular warp, plus tau_tol ("L's
+   relative error from tau below tau_tol"), plus for the shadow its edges
+   misplaced by t's resolution eps |t0|. The shadow only where its edges
+   are breakpoints: without them an adaptive method that samples on both
+   sides of it sees none of it ("what can still be missed", hrm.h's
+   TOLERANCES; a pair grown to steps of 0.4 T strode over [0.3, 0.55] T). */
+static void xg_accuracy(xg_tally *t, const xg_case *k, const xg_scene *s, const hrm_result *r, hrm_status st,
+                        double rtol_eff)
+{
+    const int fixed = xg_fixed(k->method), exact_any = k->method == HRM_ANALYTIC_MARCH || (k->expo && !k->warp);
+    const int eq = k->warp == XW_EQUIANGULAR || (k->warp == XW_USER && s->user == XU_TAN);
+    int c;
+    for (c = 0; c < NCH && !(k->form == HRM_FORM_RTE && k->callbacks); ++c) {
+        double tau = ((double)s->sa[c] + (double)s->ss[c]) * s->Teff;
+        if (!xg_tr_ok(k, tau, (double)r->Tr[c], exp(-tau), rtol_eff)) {
+            xg_fail(t, XP_ACCURACY, k, st, r, "Tr against exp(-tau)", (double)r->Tr[c], exp(-tau));
+            break;
+        }
+    }
+    if (k->form == HRM_FORM_RTE || k->light == XL_PEAK || (k->light == XL_SHADOW && !k->breaks) ||
+        (st != HRM_OK && st != HRM_WARN_RTOL_CLIPPED))
+        return;
+    if (fixed && !(k->light == XL_CONST && (exact_any || k->warp == XW_DISTANCE))) return;
+    for (c = 0; c < NCH; ++c) {
+        double ss = (double)s->ss[c], stc = (double)s->sa[c] + ss, tau = stc * s->Teff;
+        double want = xg_exact_L(k, s, c), err = fabs((double)r->L[c] - want) / want, bound;
+        if (fixed && !exact_any && stc > (double)s->sa[0] + (double)s->ss[0]) continue; /* thicker than sigma_ref */
+        bound = fp_floor(r->stats.evals, tau < 40 ? tau : 40) * (eq ? XG_WARP_COND : 1) + xg_tau_tol(k, rtol_eff);
+        if (k->light == XL_SHADOW)
+            bound += real_eps() * fabs(s->ta) * ss * (double)s->li[c] *
+                     (exp(-stc * (s->lo - s->ta)) + exp(-stc * (s->hi - s->ta))) / want;
+        if (!fixed && bound < 5 * rtol_eff) bound = 5 * rtol_eff;
+        if (want == 0) err = fabs((double)r->L[c]); /* an empty ray */
+        if (err <= bound && err / bound > t->worst_acc) t->worst_acc = err / bound;
+        if (!(err <= bound)) {
+            xg_fail(t, XP_ACCURACY, k, st, r, "L's relative error, bound", err, bound);
+            return;
+        }
+    }
+}
+
+/* 8. "A constant sigma_t given through callbacks therefore gives the L and
+   Tr of the same medium flagged HRM_MEDIUM_HOMOGENEOUS, to round-off,
+   under every warp and for every method" (TRANSMITTANCE). The case solved
+   again with constants, optical-depth form (the RTE form integrates its
+   own Tr from callbacks), neither an error nor (fixed-step: no estimate of
+   the miss) a warning. L within round-off fp_floor(evals, min(tau, 40))
+   plus tau_tol (the layer), plus for the adaptive methods both error
+   estimates and 2 rtol (a decision at the threshold may fall either way
+   on round-off); Tr as in 7. */
+static void xg_paths(xg_tally *t, const xg_case *k, const hrm_result *r, hrm_status st, double rtol_eff)
+{
+    xg_scene s2;
+    hrm_result r2;
+    hrm_status st2 = xg_solve(k, 0, &s2, &r2);
+    int c;
+    /* (not at h_min on a peak narrower than the smallest step: no
+       estimate of a step sees what lies between its nodes, and the two
+       paths' staircases of t differ; float, D = 1e-12: 1e3 times the
+       estimate) */
+    if (k->form == HRM_FORM_RTE || st < 0 || st2 < 0 || (xg_fixed(k->method) && (st || st2)) ||
+        ((st == HRM_WARN_H_MIN || st2 == HRM_WARN_H_MIN) && k->light == XL_PEAK && s2.D < 1e-6 * s2.Teff))
+        return;
+    for (c = 0; c < NCH; ++c) {
+        double a = (double)r->L[c], b = (double)r2.L[c], tau = ((double)s2.sa[c] + (double)s2.ss[c]) * s2.Teff;
+        double tol = (fp_floor(r->stats.evals, tau < 40 ? tau : 40) + xg_tau_tol(k, rtol_eff)) * fabs(b);
+        if (!finite_d(a) || !finite_d(b)) return; /* counted in 2 */
+        if (!xg_fixed(k->method)) tol += (double)r->error[c] + (double)r2.error[c] + 2 * rtol_eff * fabs(b);
+        if (!(fabs(a - b) <= tol + xg_tr_slack(k))) {
+            xg_fail(t, XP_PATHS, k, st, r, "L with callbacks, with constants", a, b);
+            return;
+        }
+        if (!xg_tr_ok(k, tau, (double)r->Tr[c], (double)r2.Tr[c], rtol_eff)) {
+            xg_fail(t, XP_PATHS, k, st, r, "Tr with callbacks, with constants", (double)r->Tr[c], (double)r2.Tr[c]);
+            return;
+        }
+    }
+}
+
+static void xg_check(xg_tally *t, const xg_case *k)
+{
+    xg_scene s;
+    hrm_result r;
+    hrm_status st = xg_solve(k, k->callbacks, &s, &r);
+    const int rte = k->form == HRM_FORM_RTE, fixed = xg_fixed(k->method);
+    const double eps = real_eps(), N = xg_steps[k->ri];
+    const double rtol_eff = xg_rtol[k->ri] > 100 * eps ? xg_rtol[k->ri] : 100 * eps;
+    double big = fabs(s.delta) > fabs(s.ta) ? fabs(s.delta) : fabs(s.ta), sig_max = 0, fp;
+    int c, finite = 1, missed = 0, blowup, overflow, singular = k->warp == XW_EQUIANGULAR && s.Teff > 0 && s.D <= 4 * eps * big;
+    long calls = s.n_sa + s.n_ss + s.n_le + s.n_li, work = r.stats.steps + r.stats.rejected;
+    long extra = r.stats.medium_evals - r.stats.evals;
+    t->solves++;
+    for (c = 0; c < NCH; ++c) {
+        if ((double)s.sa[c] + (double)s.ss[c] > sig_max) sig_max = (double)s.sa[c] + (double)s.ss[c];
+        finite &= finite_d((double)r.L[c]) && finite_d((double)r.Tr[c]) && finite_d((double)r.error[c]);
+    }
+    fp = fp_floor(r.stats.evals, sig_max * s.Teff < 40 ? sig_max * s.Teff : 40);
+    t->singular += st == HRM_ERR_SINGULAR;
+    t->warnings += st > 0;
+    /* The RTE form's documented blow-up (ACCURACY AND COST: explicit
+       fixed-step solvers past their stability limit of h sigma_t, Euler 2,
+       RK4 2.79, Adams-Bashforth 0.3, or under a warp, which makes the
+       equation stiff; a pair's steps forced unchecked by its budget):
+       HRM_ERR_RANGE once the solution leaves the range, never inf or NaN. */
+    blowup = rte && (!fixed || k->warp != XW_NONE ||
+                     sig_max * s.Teff / N > (k->method == HRM_EULER ? 2 : k->method == HRM_RK4 ? 2.79 : 0.3));
+    if (st == HRM_ERR_RANGE && blowup) t->blowups++;
+    /* The range (ERRORS): a source sigma_s Li, times a warp's dt/du, past
+       the largest real / 1024 / max(1, T) is HRM_ERR_RANGE. Possible here
+       where the peak 1 / D^2 times sigma_t could pass it (float: sigma_t
+       1e15 and D 1e-12), under an equiangular map's dt/du up to T^2 / D,
+       or the distance warp's 2 / (eps sigma_t) near its far end. */
+    {
+        double R = (real_is_float() ? (double)FLT_MAX : DBL_MAX) / 1024 / (s.Teff > 1 ? s.Teff : 1);
+        double src = sig_max * 2 * (k->light == XL_PEAK ? 1 / (s.D * s.D) : 1) + sig_max * 2;
+        double jac = k->warp == XW_DISTANCE ? 2 / (eps * sig_max)
+                   : k->warp == XW_EQUIANGULAR || (k->warp == XW_USER && s.user == XU_TAN)
+                       ? s.Teff * s.Teff / s.D + s.D : 2 * s.Teff;
+        overflow = src * (jac > 1 ? jac : 1) > R;
+        if (st == HRM_ERR_RANGE && overflow && !blowup) t->ranges++;
+    }
+
+    /* 4. Callbacks at finite abscissae within the ray, its ends included;
+       the user warp at finite u within [u(t0), u(t1)]. */
+    if (s.nonfinite || (calls > 0 && (s.tmin < s.ta || s.tmax > s.tb)))
+        xg_fail(t, XP_ABSCISSA, k, st, &r, "callback outside [t0, t1] (least, largest t)", s.tmin, s.tmax);
+    if (s.warp_bad)
+        xg_fail(t, XP_ABSCISSA, k, st, &r, "user warp at a bad u (calls)", (double)s.warp_bad, (double)s.warp_calls);
+
+    /* 5. Work: the watchdog stopped a runaway (nothing more to check); an
+       adaptive method's attempted steps or intervals, each at least one
+       new node normally, within max_evals. */
+    if (s.warp_calls > XG_WATCHDOG) {
+        xg_fail(t, XP_EVALS, k, st, &r, "runaway: the watchdog (evals, warp calls)", (double)r.stats.evals,
+                (double)s.warp_calls);
+        return;
+    }
+    if (!fixed && work > t->max_work) t->max_work = work;
+    if (!fixed && work > XG_MAX_EVALS + XG_WORK_EXTRA)
+        xg_fail(t, XP_EVALS, k, st, &r, "steps + rejected past max_evals", (double)work, (double)XG_MAX_EVALS);
+
+    /* 1. A known status. Every input is valid: the only error is
+       HRM_ERR_SINGULAR, for an equiangular light within 4 epsilons of the
+       ray, and there it is due (a warp at a bad u: counted in 4). An error
+       holds L = 0, Tr = 1, error = -1; a fixed-step result error = -1, an
+       adaptive one its estimate (>= 0; not finite: counted in 2). */
+    if (strcmp(hrm_status_string(st), "unknown status") == 0 ||
+        (!s.warp_bad && !(st == HRM_ERR_RANGE && (blowup || overflow)) &&
+         ((st < 0) != singular || (st < 0 && st != HRM_ERR_SINGULAR))))
+        xg_fail(t, XP_STATUS, k, st, &r, singular ? "HRM_ERR_SINGULAR due" : "unexpected status", st, singular);
+    for (c = 0; c < NCH; ++c) {
+        double e = (double)r.error[c];
+        if (!(st < 0 ? r.L[c] == 0 && r.Tr[c] == 1 && e == -1 : fixed ? e == -1 : !(e < 0))) {
+            xg_fail(t, XP_STATUS, k, st, &r, "L, Tr or error against the status (error)", e, fixed ? -1 : 0);
+            break;
+        }
+    }
+    if (st < 0) return;
+    /* HRM_OK (or only RTOL_CLIPPED) from an adaptive method, optical-depth
+       form: what it accepted is estimated within atol + 3 rtol |L| (the
+       shares sum to 2 rtol |L|, the rough steps' to rtol |L|: TOLERANCES),
+       plus the round-off its estimates carry from the samples, fp |L| (what
+       floors rtol at 100 eps); past that "the call returns a warning". A
+       miss is counted here alone (not in 7). */
+    for (c = 0; c < NCH && !fixed && !rte && (st == HRM_OK || st == HRM_WARN_RTOL_CLIPPED); ++c)
+        if (!((double)r.error[c] <= (3 * rtol_eff + fp) * fabs((double)r.L[c]))) {
+            missed = 1;
+            xg_fail(t, XP_STATUS, k, st, &r, "HRM_OK, its error estimate past the tolerance (error, 3 rtol L)",
+                    (double)r.error[c], 3 * rtol_eff * fabs((double)r.L[c]));
+            break;
+        }
+
+    /* 2. Finite, always (a blow-up is HRM_ERR_RANGE, above). */
+    if (!finite)
+        xg_fail(t, XP_FINITE, k, st, &r, "L, Tr or error not finite (L, Tr)", (double)r.L[0], (double)r.Tr[0]);
+
+    /* 3. The optical-depth form: 0 <= Tr <= 1, 0 <= L however thick. Upper
+       bounds over the exact 1 - Tr, with fp_floor(evals, 0) of round-off
+       and tau_tol where the layer's tau gives 1 - Tr: an adaptive method's
+       "L always lies in [0, the largest Le or Li sampled times 1 - Tr]"
+       (TOLERANCES); for the analytic march and the fitted rules the
+       largest sampled S / sigma_t ("0 <= L <= sup(S / sigma_t) (1 - Tr)
+       however thick"), the fitted weights with 1e3 eps more (sums of
+       Legendre moments: test_exponential.c's bound). */
+    for (c = 0; c < NCH && !rte && finite; ++c) {
+        double sa = (double)s.sa[c], ss = (double)s.ss[c], stc = sa + ss, Lc = (double)r.L[c];
+        double le = k->le ? (double)s.le[c] : 0, top = -1;
+        if (k->method == HRM_ANALYTIC_MARCH || k->expo) top = (sa * le + ss * s.li_max[c]) / stc;
+        else if (!fixed) top = le > s.li_max[c] ? le : s.li_max[c];
+        top *= -expm1(-stc * s.Teff) * (1 + fp_floor(r.stats.evals, 0) + xg_tau_tol(k, rtol_eff) + (k->expo ? 1e3 * eps : 0));
+        if (!(r.Tr[c] >= 0 && r.Tr[c] <= 1 && Lc >= 0)) {
+            xg_fail(t, XP_BOUNDS, k, st, &r, "Tr outside [0, 1] or L < 0 (L, Tr)", Lc, (double)r.Tr[c]);
+            break;
+        }
+        /* with a warning, within its estimate of the miss (a budget cut
+           short, t's resolution, h_min: a fitted step past its nodes'
+           bound by 1e-5 at MAX_EVALS) */
+        if (top >= 0 && !(Lc <= top + (st > 0 && r.error[c] > 0 ? (double)r.error[c] : 0))) {
+            xg_fail(t, XP_BOUNDS, k, st, &r, "L above its bound", Lc, top);
+            break;
+        }
+    }
+
+    /* 5. Source evaluations: an adaptive method within max_evals, a
+       fixed-step one exactly the table's count (a ray that is not empty);
+       one Li call each (sigma_s > 0 everywhere), as many Le calls with
+       emission (sigma_a > 0). */
+    if ((!fixed && r.stats.evals > XG_MAX_EVALS) ||
+        (fixed && s.Teff > 0 && !k->breaks && r.stats.evals != xg_fixed_evals(k->method, (long)N)) ||
+        (fixed && s.Teff > 0 && k->breaks && (r.stats.evals < (long)N || r.stats.evals > xg_fixed_evals(k->method, (long)N + 3) + 8)))
+        xg_fail(t, XP_EVALS, k, st, &r, "evaluations (got, allowed or the table's)", (double)r.stats.evals,
+                fixed ? (double)xg_fixed_evals(k->method, (long)N) : (double)XG_MAX_EVALS);
+    if (s.n_li != r.stats.evals || s.n_le != (k->le ? r.stats.evals : 0))
+        xg_fail(t, XP_EVALS, k, st, &r, "Li (Le) calls against evals", (double)s.n_li, (double)r.stats.evals);
+
+    /* 6. Medium evaluations: none for a homogeneous medium (its sigma
+       callbacks ignored); with callbacks each calls sigma_a and/or sigma_s
+       once, at most XG_MEDIUM_EXTRA more than the source evaluations. */
+    if (!k->callbacks && (s.n_sa || s.n_ss || r.stats.medium_evals))
+        xg_fail(t, XP_MEDIUM, k, st, &r, "homogeneous: sigma calls, medium_evals", (double)(s.n_sa + s.n_ss),
+                (double)r.stats.medium_evals);
+    if (k->callbacks && extra > t->max_medium) t->max_medium = extra;
+    if (k->callbacks && (r.stats.medium_evals < (s.n_sa > s.n_ss ? s.n_sa : s.n_ss) ||
+                         r.stats.medium_evals > s.n_sa + s.n_ss || extra > XG_MEDIUM_EXTRA))
+        xg_fail(t, XP_MEDIUM, k, st, &r, "medium_evals against sigma calls", (double)r.stats.medium_evals,
+                (double)(s.n_sa + s.n_ss));
+
+    if (!missed) xg_accuracy(t, k, &s, &r, st, rtol_eff);
+    if (k->callbacks) xg_paths(t, k, &r, st, rtol_eff);
+}
+
+/* The product's index, decoded: the cheap hash keeps one in XG_KEEP; what
+   is left of it chooses the minor options (Le, grey, Gauss-Kronrod's mode
+   and rule, the fit, the user warp). */
+static void xg_grid(void)
+{
+    const unsigned long per = (unsigned long)XW_COUNT * 2 * XL_COUNT * XG_NI * XG_ND * XG_NR * XG_NW;
+    unsigned long id;
+    xg_tally t;
+    xg_case k;
+    int p;
+    memset(&t, 0, sizeof t);
+    for (id = 2 * per; id < 2 * per * (unsigned long)HRM_METHOD_COUNT; ++id) {
+        unsigned long h = id ^ (unsigned long)XG_SALT << 20, x = id;
+        int f, fit;
+        h ^= h >> 16;
+        h = (h * 0x45d9f3bUL) & 0xffffffffUL;
+        h ^= h >> 16;
+        h = (h * 0x45d9f3bUL) & 0xffffffffUL;
+        h ^= h >> 16;
+        if (h % XG_KEEP) continue;
+#ifdef XG_ONLY
+        if (id != XG_ONLY) continue;
+#endif
+        k.id = id;
+        h /= XG_KEEP;
+        k.wi = (int)(x % XG_NW), x /= XG_NW;
+        k.ri = (int)(x % XG_NR), x /= XG_NR;
+        k.di = (int)(x % XG_ND), x /= XG_ND;
+        k.ii = (int)(x % XG_NI), x /= XG_NI;
+        k.light = (int)(x % XL_COUNT), x /= XL_COUNT;
+        k.callbacks = (int)(x % 2), x /= 2;
+        k.warp = (int)(x % XW_COUNT), x /= XW_COUNT;
+        f = (int)(x % 2);
+        k.method = (hrm_method)(x / 2);
+        if (f && !is_ivp(k.method) && !is_pair(k.method)) continue; /* the RTE form is theirs */
+        fit = !f && (k.method == HRM_SIMPSON || k.method == HRM_GAUSS_KRONROD || is_pair(k.method));
+        k.form = f ? HRM_FORM_RTE : HRM_FORM_OPTICAL_DEPTH;
+        k.le = (int)(h & 1);
+        k.grey = (int)(h >> 1 & 1);
+        k.gk_local = (int)(h >> 2 & 1);
+        k.gk_k7 = (int)(h >> 3 & 1);
+        k.expo = fit ? (int)(h >> 4 & 3) % 3 : 0;
+        k.user = (int)(h >> 6 & 3) % XU_COUNT;
+        k.breaks = k.light == XL_SHADOW && (h >> 8 & 1);
+        xg_check(&t, &k);
+    }
+    NOTE("%ld solves (%s): %ld HRM_ERR_SINGULAR, %ld warnings, %ld documented RTE blow-ups and %ld sources past "
+         "the range (HRM_ERR_RANGE); worst accuracy %.3g of its bound; medium_evals - evals at most %ld; steps + "
+         "rejected at most %ld",
+         t.solves, real_is_float() ? "float" : "double", t.singular, t.warnings, t.blowups, t.ranges, t.worst_acc,
+         t.max_medium, t.max_work);
+    for (p = 0; p < XP_COUNT; ++p)
+        CHECK_INT(t.bad[p], 0, "%s (%s): violations", xg_promise[p], real_is_float() ? "float" : "double");
+}
+
+void extremes_tests(void)
+{
+    RUN_GROUP(xg_grid);
+}
