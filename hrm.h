@@ -300,10 +300,14 @@
    first estimate of the total (the first step or the initial panels). A
    first sample on a light's peak can make that estimate many times too
    large, and the shares too loose. So at the end the estimates of what
-   was accepted are added up: where the scale proved larger than |L| and
-   they exceed atol + 3 rtol |L|, the method is run once more at the scale
-   found (its evaluations count twice), and if they still exceed it the
-   call returns HRM_WARN_TOLERANCE. (Not for Munoz's and Gonterman's
+   was accepted are added up: where they exceed atol + 3 rtol |L| and
+   the scale proved larger than |L|, the method is run once more at the
+   scale found (its evaluations count twice), and if they still exceed it
+   the call returns HRM_WARN_TOLERANCE; where the scale was not the cause
+   (steps accepted at t's resolution, rough steps past their share), it
+   returns HRM_WARN_TOLERANCE at once. Likewise where the physical bound
+   below cuts L by more than the tolerance, or a warp put distinct nodes
+   on one abscissa (HRM_WARN_ROUNDOFF: t cannot resolve the warp). (Not for Munoz's and Gonterman's
    controllers, nor the RTE form, whose local errors do not add up.)
    result.error: the sum of the estimates of what an adaptive method
    accepted, per channel, whatever the status: with a warning, how far the
@@ -769,7 +773,12 @@ typedef struct hrm_options {
     hrm_real h_max;     /* largest step or interval. 0: the whole range */
     hrm_real h0;        /* first step of the Runge-Kutta methods. 0: chosen
                            from rtol and the method's order */
-    long max_evals;     /* source evaluation budget. 0: 100000 */
+    long max_evals;     /* source evaluation budget. 0: 100000. Also
+                           bounds an adaptive method's attempts (steps
+                           or intervals, accepted or rejected), which
+                           cost no evaluation where their nodes fall on
+                           remembered abscissae. Fixed-step methods
+                           spend what N says and ignore it. */
     hrm_control control;/* Runge-Kutta step control. 0: HRM_CONTROL_PI */
     hrm_gk_mode gk_mode;/* Gauss-Kronrod. 0: HRM_GK_GLOBAL */
     hrm_gk_rule gk_rule;/* Gauss-Kronrod. 0: HRM_GK_K15 */
@@ -2745,7 +2754,7 @@ static void hrm__efit_panel(const hrm__ctx *c, const hrm__efit *F, const hrm__pt
                             hrm_real g[HRM__EFIT_MAX][HRM__CH], hrm_real un[HRM__CH])
 {
     int n = F->n, i, j, k;
-    hrm_real cap = HRM__IS_FLOAT ? HRM__R(80) : HRM__R(700), s[HRM__EFIT_MAX] = {0};
+    hrm_real s[HRM__EFIT_MAX] = {0};
     hrm_real w[HRM__EFIT_MAX], b_prev = -1;
     /* hrm__neg_log's cap, where tau comes from the callback's Tr */
     hrm_real under = c->tau_from_tr ? -HRM_LOG(HRM__TINY) : HRM__R(HUGE_VAL);
@@ -2808,7 +2817,9 @@ static void hrm__efit_panel(const hrm__ctx *c, const hrm__efit *F, const hrm__pt
             /* in logarithms where the source is factored too, relative to
                the first node: at most 1, never overflowing */
             if (whole) g[j][i] = HRM_EXP(lf[j] - lf[0] + b * (F->y[j] - F->y[0]));
-            else g[j][i] = pt[j].gq[i] * HRM_EXP(x < cap ? x : cap);
+            /* x <= 0 exactly (b is the least slope); its rounding, at a
+               slope of 1e33, was +6e17 */
+            else g[j][i] = pt[j].gq[i] * HRM_EXP(x < 0 ? x : 0);
             acc += w[j] * g[j][i];
             if (j == 0 || g[j][i] < lo) lo = g[j][i];
             if (j == 0 || g[j][i] > hi) hi = g[j][i];
