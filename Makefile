@@ -1,7 +1,9 @@
 # hrm.h - build, test and benchmark.
 #   make test    the compile matrix (gcc/clang, C99/C++, double/float, 1/3/8 channels,
 #                -O0/-O2, ASan+UBSan, HRM_STATIC, C/C++ linkage), each run
-#                of the test suite, ending with the line "N passed, N failed"
+#                of the test suite; the fuzz corpus replayed; threads (also
+#                under TSan) and heap allocations (tests/threads.c); ending
+#                with the line "N passed, N failed"
 #   make bench   the single-ray convergence benchmark: tables on the
 #                terminal, files in bench/out/ only (ignored by git)
 #   make bench-quick   the same over short ranges (bench/out/quick/)

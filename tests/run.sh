@@ -100,6 +100,24 @@ else
     echo "fuzz-replay: build failed"; cat "$B/fuzz-replay.log"; fail=$((fail + 1))
 fi
 
+# Threads and memory (tests/threads.c): the same solves on 4 threads and
+# serially, bit for bit, also under ThreadSanitizer; and no heap allocation
+# in any public call (malloc, calloc, realloc and free wrapped at link time).
+# prog NAME COMPILER FLAGS...: build tests/threads.c with them and run it
+prog() {
+    pname=$1
+    shift
+    configs=$((configs + 1))
+    if "$@" -I. -Itests tests/threads.c -o "$B/$pname" -lm 2> "$B/$pname.log"; then
+        tally "$pname" "$B/$pname"
+    else
+        echo "$pname: build failed"; cat "$B/$pname.log"; fail=$((fail + 1))
+    fi
+}
+prog threads-gcc-O2       gcc   -std=c99 -O2 $WARN -pthread
+prog threads-clang-tsan   clang -std=c99 -O1 -g $WARN -fsanitize=thread -pthread
+prog alloc-count-gcc-O2   gcc   -std=c99 -O2 $WARN -DTH_COUNT_ALLOC -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc,--wrap=free
+
 # The quick start in hrm.h's top comment compiles and runs as printed.
 configs=$((configs + 1))
 sed -n '/---- quick start begin ----/,/---- quick start end ----/p' hrm.h |

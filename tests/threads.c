@@ -1,0 +1,315 @@
+/* threads.c - thread safety, re-entrance and heap use of hrm.h, as a
+   program of its own (pthreads; make test builds it three ways):
+   - th_threads: a table of solves (every method, both forms where the
+     method has them, no warp, the distance and the equiangular warp, the
+     exponential fits, sigma callbacks or constants, a breakpoint list,
+     hrm_transmittance) run serially, then by TH_THREADS threads at once,
+     each in its own order; every result must equal the serial one bit for
+     bit. The point light's Li calls hrm_transmittance for its shadow ray
+     through the same medium (re-entrance). Under ThreadSanitizer the same
+     run reports any data race.
+   - th_alloc (built with TH_COUNT_ALLOC and -Wl,--wrap=malloc,...): the
+     heap allocations made during the same solves and the other public
+     calls, which must be none; a deliberate allocation checks that the
+     count sees one.
+   Callbacks read their scene through the user pointer; nothing here is
+   mutable and global but the harness's tally and, with TH_COUNT_ALLOC,
+   the allocation counter (the linker's wrappers take no user pointer). */
+#define HRM_IMPLEMENTATION
+#include "hrm.h"
+#define HARNESS_IMPLEMENTATION /* a single-file program: the tally lives here */
+#include "harness.h"
+
+#include <math.h>
+#include <pthread.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define NCH HRM_CHANNELS
+#define TH_THREADS 4
+#define TH_MAX_CASES 2048
+
+#ifdef TH_COUNT_ALLOC
+/* Counted allocations: the linker routes every call of these functions to
+   the wrappers below (-Wl,--wrap=malloc, ...). */
+static long th_allocs;
+void *__real_malloc(size_t n);
+void *__real_calloc(size_t n, size_t k);
+void *__real_realloc(void *p, size_t n);
+void __real_free(void *p);
+void *__wrap_malloc(size_t n) { th_allocs++; return __real_malloc(n); }
+void *__wrap_calloc(size_t n, size_t k) { th_allocs++; return __real_calloc(n, k); }
+void *__wrap_realloc(void *p, size_t n) { th_allocs++; return __real_realloc(p, n); }
+void __wrap_free(void *p) { if (p) th_allocs++; __real_free(p); }
+#endif
+
+/* The scene: sigma_t = k (1 + 0.5 sin(s)) per channel, albedo 0.7, a
+   point light at (delta, D) seen through the medium (its shadow ray along
+   the light's direction, approximated by the ray's own medium from the
+   projection to the sample), emission 0.3. Read-only. */
+typedef struct th_scene {
+    double k[NCH], delta, D;
+    int shadow;             /* Li calls hrm_transmittance */
+    hrm_medium shadow_medium;
+} th_scene;
+
+static double th_sig(const th_scene *s, int c, double t) { return s->k[c] * (1 + 0.5 * sin(t)); }
+
+static void th_sa(void *u, hrm_real t, hrm_real out[NCH])
+{
+    const th_scene *s = (const th_scene *)u;
+    int c;
+    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)(0.3 * th_sig(s, c, (double)t));
+}
+
+static void th_ss(void *u, hrm_real t, hrm_real out[NCH])
+{
+    const th_scene *s = (const th_scene *)u;
+    int c;
+    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)(0.7 * th_sig(s, c, (double)t));
+}
+
+static void th_le(void *u, hrm_real t, hrm_real out[NCH])
+{
+    int c;
+    (void)u;
+    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)(0.3 + 0.01 * c + 0.0 * (double)t);
+}
+
+static void th_li(void *u, hrm_real t, hrm_real out[NCH])
+{
+    const th_scene *s = (const th_scene *)u;
+    double x = (double)t - s->delta, r2 = s->D * s->D + x * x;
+    hrm_real tr[NCH];
+    int c;
+    for (c = 0; c < NCH; ++c) tr[c] = 1;
+    if (s->shadow) {
+        /* the shadow ray: from the projection of the sample towards the
+           light, through the same medium, as long as the distance D */
+        hrm_options o = hrm_default_options(HRM_SIMPSON);
+        double a = (double)t < s->delta ? (double)t : s->delta;
+        hrm_transmittance(&s->shadow_medium, (hrm_real)a, (hrm_real)(a + s->D), &o, tr, 0);
+    }
+    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)(tr[c] / r2);
+}
+
+typedef struct th_case {
+    hrm_method method;
+    hrm_form form;
+    int warp, expo, callbacks, breaks, tr_only, shadow;
+} th_case;
+
+typedef struct th_out {
+    hrm_status st;
+    hrm_result r;
+} th_out;
+
+static hrm_medium th_medium(const th_scene *s, int callbacks)
+{
+    hrm_medium m;
+    int c;
+    memset(&m, 0, sizeof m);
+    m.user = (void *)s;
+    m.Le = th_le;
+    m.Li = th_li;
+    if (callbacks) {
+        m.sigma_a = th_sa;
+        m.sigma_s = th_ss;
+    } else {
+        m.flags = HRM_MEDIUM_HOMOGENEOUS;
+        for (c = 0; c < NCH; ++c) {
+            m.const_sigma_a[c] = (hrm_real)(0.3 * s->k[c]);
+            m.const_sigma_s[c] = (hrm_real)(0.7 * s->k[c]);
+        }
+    }
+    return m;
+}
+
+/* One case, into out (memset first: results compared bit for bit,
+   padding included). */
+static void th_run(const th_case *k, const th_scene *base, th_out *out)
+{
+    th_scene s = *base;
+    hrm_medium m;
+    hrm_options o = hrm_default_options(k->method);
+    hrm_real brk[2] = {(hrm_real)2.5, (hrm_real)6};
+    memset(out, 0, sizeof *out);
+    s.shadow = k->shadow;
+    s.shadow_medium = th_medium(base, 1);
+    s.shadow_medium.Le = 0;
+    s.shadow_medium.Li = 0;
+    m = th_medium(&s, k->callbacks);
+    o.form = k->form;
+    o.exponential = k->expo;
+    o.rtol = (hrm_real)1e-5;
+    o.steps = 24;
+    o.max_evals = 4000;
+    o.seed = 11;
+    if (k->warp == 1) o.warp.kind = HRM_WARP_DISTANCE;
+    if (k->warp == 2) {
+        o.warp.kind = HRM_WARP_EQUIANGULAR;
+        o.warp.delta = (hrm_real)s.delta;
+        o.warp.D = (hrm_real)s.D;
+    }
+    if (k->breaks) {
+        o.breaks = brk;
+        o.nbreaks = 2;
+    }
+    if (k->tr_only)
+        out->st = hrm_transmittance(&m, 0, 8, &o, out->r.Tr, &out->r.stats);
+    else
+        out->st = hrm_solve(&m, 0, 8, &o, &out->r);
+}
+
+/* The table: every combination that hrm accepts (a rejected option, such
+   as the RTE form of a quadrature rule, is left out). */
+static int th_cases(const th_scene *s, th_case *k, int max)
+{
+    int n = 0, mi, f, w, e, cb, b;
+    for (mi = 1; mi < (int)HRM_METHOD_COUNT; ++mi)
+        for (f = HRM_FORM_OPTICAL_DEPTH; f <= HRM_FORM_RTE; ++f)
+            for (w = 0; w < 3; ++w)
+                for (e = 0; e < 3; ++e)
+                    for (cb = 0; cb < 2; ++cb)
+                        for (b = 0; b < 2 && n < max; ++b) {
+                            th_out o;
+                            th_case c;
+                            memset(&c, 0, sizeof c);
+                            c.method = (hrm_method)mi;
+                            c.form = (hrm_form)f;
+                            c.warp = w;
+                            c.expo = e;
+                            c.callbacks = cb;
+                            c.breaks = b;
+                            c.shadow = (mi + w + e) % 3 == 0;
+                            th_run(&c, s, &o);
+                            if (o.st == HRM_ERR_BAD_OPTION) continue;
+                            k[n++] = c;
+                            if (w == 0 && e == 0 && b == 0 && n < max) {
+                                c.tr_only = 1; /* hrm_transmittance too */
+                                k[n++] = c;
+                            }
+                        }
+    return n;
+}
+
+static void th_scene_init(th_scene *s)
+{
+    int c;
+    memset(s, 0, sizeof *s);
+    for (c = 0; c < NCH; ++c) s->k[c] = 0.4 + 0.1 * c;
+    s->delta = 3.7;
+    s->D = 0.3;
+}
+
+#ifndef TH_COUNT_ALLOC
+typedef struct th_job {
+    const th_case *cases;
+    const th_out *want;
+    const th_scene *scene;
+    int n, start;
+    long solved, differ;
+} th_job;
+
+static void *th_worker(void *arg)
+{
+    th_job *j = (th_job *)arg;
+    int i;
+    for (i = 0; i < j->n; ++i) {
+        int at = (j->start + i * (j->start % 2 ? 7 : 1)) % j->n; /* each thread its own order */
+        th_out got;
+        th_run(&j->cases[at], j->scene, &got);
+        j->solved++;
+        if (memcmp(&got, &j->want[at], sizeof got) != 0) j->differ++;
+    }
+    return 0;
+}
+
+/* The same solves on TH_THREADS threads at once as serially: bit for bit. */
+static void th_threads(void)
+{
+    static th_case cases[TH_MAX_CASES]; /* (static: large; written once, here) */
+    static th_out want[TH_MAX_CASES];
+    th_scene s;
+    th_job jobs[TH_THREADS];
+    pthread_t tid[TH_THREADS];
+    int n, i, ok = 1;
+    long differ = 0, solved = 0, shadows = 0, statuses = 0;
+    th_scene_init(&s);
+    n = th_cases(&s, cases, TH_MAX_CASES);
+    for (i = 0; i < n; ++i) {
+        th_run(&cases[i], &s, &want[i]);
+        shadows += cases[i].shadow;
+        statuses += want[i].st >= 0;
+    }
+    for (i = 0; i < TH_THREADS; ++i) {
+        jobs[i].cases = cases;
+        jobs[i].want = want;
+        jobs[i].scene = &s;
+        jobs[i].n = n;
+        jobs[i].start = i * n / TH_THREADS + i;
+        jobs[i].solved = jobs[i].differ = 0;
+        ok &= pthread_create(&tid[i], 0, th_worker, &jobs[i]) == 0;
+    }
+    CHECK(ok, "pthread_create");
+    for (i = 0; i < TH_THREADS; ++i) {
+        if (ok) pthread_join(tid[i], 0);
+        solved += jobs[i].solved;
+        differ += jobs[i].differ;
+    }
+    NOTE("%d cases (%ld with a shadow ray from Li, %ld answered), %ld solves on %d threads", n, shadows, statuses,
+         solved, TH_THREADS);
+    CHECK(n > 500, "the table holds every method, form, warp and fit (%d cases)", n);
+    CHECK_INT(solved, (long)n * TH_THREADS, "every thread solved every case");
+    CHECK_INT(differ, 0, "results on %d threads differing from the serial ones, bit for bit", TH_THREADS);
+}
+#else
+/* No heap allocation in any public call. */
+static void th_alloc(void)
+{
+    static th_case cases[TH_MAX_CASES];
+    th_scene s;
+    th_out out;
+    hrm_real origin[3] = {0, 0, 0}, dir[3] = {1, 0, 0}, light[3] = {3, 1, 0}, Tr[NCH];
+    hrm_warp warp;
+    long before, during = 0;
+    int n, i;
+    void *p;
+    void *(*volatile th_malloc)(size_t) = malloc;
+    void (*volatile th_free)(void *) = free;
+    th_scene_init(&s);
+    n = th_cases(&s, cases, TH_MAX_CASES); /* (these solves count below) */
+    before = th_allocs;
+    p = th_malloc(64); /* the count must see this (through a volatile
+                          pointer: a compiler may elide malloc and free) */
+    CHECK(th_allocs == before + 1, "the wrapper counts a malloc (%ld)", th_allocs - before);
+    th_free(p);
+    before = th_allocs;
+    for (i = 0; i < n; ++i) th_run(&cases[i], &s, &out);
+    during += th_allocs - before;
+    before = th_allocs;
+    {
+        hrm_options o = hrm_default_options(HRM_GAUSS_KRONROD);
+        hrm_medium m = th_medium(&s, 1);
+        (void)hrm_transmittance(&m, 0, 8, &o, Tr, 0);
+        (void)hrm_equiangular_warp(origin, dir, light, &warp);
+        (void)hrm_method_name(HRM_VERNER);
+        (void)hrm_status_string(HRM_WARN_TOLERANCE);
+        (void)hrm_version();
+    }
+    during += th_allocs - before;
+    NOTE("%d cases solved", n);
+    CHECK(n > 500, "the table holds every method, form, warp and fit (%d cases)", n);
+    CHECK_INT(during, 0, "heap allocations (malloc, calloc, realloc, free) during %d solves and the other calls", n);
+}
+#endif
+
+int main(void)
+{
+#ifndef TH_COUNT_ALLOC
+    RUN_GROUP(th_threads);
+#else
+    RUN_GROUP(th_alloc);
+#endif
+    return harness_summary();
+}
