@@ -101,7 +101,8 @@ else
 fi
 
 # Threads and memory (tests/threads.c): the same solves on 4 threads and
-# serially, bit for bit, also under ThreadSanitizer; and no heap allocation
+# serially, bit for bit, also under ThreadSanitizer; the stack each method
+# uses, within the manual's figure; and no heap allocation
 # in any public call (malloc, calloc, realloc and free wrapped at link time).
 # prog NAME COMPILER FLAGS...: build tests/threads.c with them and run it
 prog() {
@@ -115,7 +116,7 @@ prog() {
     fi
 }
 prog threads-gcc-O2       gcc   -std=c99 -O2 $WARN -pthread
-prog threads-clang-tsan   clang -std=c99 -O1 -g $WARN -fsanitize=thread -pthread
+prog threads-clang-tsan   clang -std=c99 -O1 -g $WARN -fsanitize=thread -pthread -DTH_NO_STACK=1
 prog alloc-count-gcc-O2   gcc   -std=c99 -O2 $WARN -DTH_COUNT_ALLOC -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc,--wrap=free
 
 # The quick start in hrm.h's top comment compiles and runs as printed.
