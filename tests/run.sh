@@ -54,7 +54,7 @@ tally() {
     code=$?
     line=$(printf '%s\n' "$out" | grep -E '^[0-9]+ passed, [0-9]+ failed' | tail -n 1)
     if [ -z "$line" ] || [ $code -ne 0 ]; then
-        printf '%s\n' "$out" | grep -E 'FAIL|error|runtime' | head -n 40
+        printf '%s\n' "$out" | grep -E 'FAIL|error|runtime|ThreadSanitizer' | head -n 40
         echo "$tname: exit $code, summary '${line}'"
     fi
     if [ -z "$line" ]; then fail=$((fail + 1)); return; fi
@@ -102,8 +102,7 @@ fi
 
 # Threads and memory (tests/threads.c): the same solves on 4 threads and
 # serially, bit for bit, also under ThreadSanitizer; the stack each method
-# uses, within the manual's figure; and no heap allocation
-# in any public call (malloc, calloc, realloc and free wrapped at link time).
+# uses, within the manual's figure.
 # prog NAME COMPILER FLAGS...: build tests/threads.c with them and run it
 prog() {
     pname=$1
@@ -117,7 +116,17 @@ prog() {
 }
 prog threads-gcc-O2       gcc   -std=c99 -O2 $WARN -pthread
 prog threads-clang-tsan   clang -std=c99 -O1 -g $WARN -fsanitize=thread -pthread -DTH_NO_STACK=1
-prog alloc-count-gcc-O2   gcc   -std=c99 -O2 $WARN -DTH_COUNT_ALLOC -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc,--wrap=free
+
+# No heap use (tests/alloc.c): every method x form x warp x fit x medium,
+# the other options, nested shadow rays, every error path and every public
+# function, one call at a time, with the four allocator functions wrapped.
+configs=$((configs + 1))
+if gcc -std=c99 -O2 $WARN -I. -Itests tests/alloc.c -o "$B/alloc" \
+       -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc,--wrap=free -lm 2> "$B/alloc.log"; then
+    tally alloc-gcc-O2 "$B/alloc"
+else
+    echo "alloc: build failed"; cat "$B/alloc.log"; fail=$((fail + 1))
+fi
 
 # The quick start in hrm.h's top comment compiles and runs as printed.
 configs=$((configs + 1))
