@@ -28,6 +28,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mt_scene.h"
+
 #define NCH HRM_CHANNELS
 
 /* The one mutable global besides the harness's tally: the linker's
@@ -57,95 +59,16 @@ void __wrap_free(void *p) { alloc_calls++; __real_free(p); }
 }
 #endif
 
-/* The scene, read-only through the user pointer: sigma_t = k (1 + 0.5
-   sin t) per channel (times 4 inside the slab [3, 5] when slab is set),
-   albedo 0.7, emission 0.3, a point light D from the ray projecting at
-   delta. bad makes sigma_a NaN (1), negative (2) or beyond HRM_REAL's range (3) past t = 4. */
-typedef struct al_scene {
-    double k[NCH], delta, D;
-    int slab, bad;
-    int shadow;              /* Li's shadow ray: 1 hrm_transmittance,
-                                2 hrm_solve (its own Li, no shadow) */
-    hrm_medium shadow_medium;
-} al_scene;
 
-static double al_sig(const al_scene *s, int c, double t)
-{
-    double v = s->k[c] * (1 + 0.5 * sin(t));
-    return s->slab && t >= 3 && t <= 5 ? 4 * v : v;
-}
 
-static void al_sa(void *u, hrm_real t, hrm_real out[NCH])
-{
-    const al_scene *s = (const al_scene *)u;
-    int c;
-    for (c = 0; c < NCH; ++c) {
-        double v = 0.3 * al_sig(s, c, (double)t);
-        if (s->bad && (double)t > 4)
-            v = s->bad == 1 ? (double)NAN
-              : s->bad == 2 ? -1.0
-                            : (sizeof(hrm_real) == sizeof(float) ? (double)FLT_MAX : DBL_MAX) / 16;
-        out[c] = (hrm_real)v;
-    }
-}
 
-static void al_ss(void *u, hrm_real t, hrm_real out[NCH])
-{
-    const al_scene *s = (const al_scene *)u;
-    int c;
-    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)(0.7 * al_sig(s, c, (double)t));
-}
 
-static void al_st(void *u, hrm_real t, hrm_real out[NCH])
-{
-    const al_scene *s = (const al_scene *)u;
-    int c;
-    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)al_sig(s, c, (double)t);
-}
 
-/* Tr(ta, tb) of al_sig without the slab, in closed form. */
-static void al_tr(void *u, hrm_real ta, hrm_real tb, hrm_real out[NCH])
-{
-    const al_scene *s = (const al_scene *)u;
-    double a = (double)ta, b = (double)tb;
-    int c;
-    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)exp(-s->k[c] * ((b - a) - 0.5 * (cos(b) - cos(a))));
-}
 
-static void al_le(void *u, hrm_real t, hrm_real out[NCH])
-{
-    int c;
-    (void)u;
-    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)(0.3 + 0.01 * c + 0.01 * (double)t);
-}
 
-static void al_li(void *u, hrm_real t, hrm_real out[NCH])
-{
-    const al_scene *s = (const al_scene *)u;
-    double x = (double)t - s->delta, r2 = s->D * s->D + x * x;
-    double a = (double)t < s->delta ? (double)t : s->delta;
-    hrm_real tr[NCH];
-    int c;
-    for (c = 0; c < NCH; ++c) tr[c] = 1;
-    if (s->shadow == 1) {
-        hrm_options o = hrm_default_options(HRM_SIMPSON);
-        hrm_transmittance(&s->shadow_medium, (hrm_real)a, (hrm_real)(a + s->D), &o, tr, 0);
-    } else if (s->shadow == 2) {
-        hrm_options o = hrm_default_options(HRM_GAUSS_KRONROD);
-        hrm_result r;
-        o.rtol = (hrm_real)1e-4;
-        hrm_solve(&s->shadow_medium, (hrm_real)a, (hrm_real)(a + s->D), &o, &r);
-        for (c = 0; c < NCH; ++c) tr[c] = r.Tr[c];
-    }
-    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)((double)tr[c] / r2);
-}
 
-/* User warp: u = t / (t + 1), t in [0, inf). */
-static hrm_real al_t_of_u(void *u, hrm_real x) { (void)u; return x / (1 - x); }
-static hrm_real al_dt_du(void *u, hrm_real x) { (void)u; return 1 / ((1 - x) * (1 - x)); }
-static hrm_real al_u_of_t(void *u, hrm_real t) { (void)u; return isinf(t) ? (hrm_real)1 : t / (t + 1); }
 
-static void al_scene_init(al_scene *s)
+static void al_scene_init(mt_scene *s)
 {
     int c;
     memset(s, 0, sizeof *s);
@@ -157,14 +80,14 @@ static void al_scene_init(al_scene *s)
 /* medium kinds: 0 constants, 1 sigma_a and sigma_s, 2 with sigma_t too,
    3 a transmittance callback */
 #define AL_MEDIA 4
-static hrm_medium al_medium(const al_scene *s, int kind)
+static hrm_medium al_medium(const mt_scene *s, int kind)
 {
     hrm_medium m;
     int c;
     memset(&m, 0, sizeof m);
     m.user = (void *)s;
-    m.Le = al_le;
-    m.Li = al_li;
+    m.Le = mt_le;
+    m.Li = mt_li;
     if (kind == 0) {
         m.flags = HRM_MEDIUM_HOMOGENEOUS;
         for (c = 0; c < NCH; ++c) {
@@ -173,10 +96,10 @@ static hrm_medium al_medium(const al_scene *s, int kind)
         }
         return m;
     }
-    m.sigma_a = al_sa;
-    m.sigma_s = al_ss;
-    if (kind == 2) m.sigma_t = al_st;
-    if (kind == 3) m.transmittance = al_tr;
+    m.sigma_a = mt_sa;
+    m.sigma_s = mt_ss;
+    if (kind == 2) m.sigma_t = mt_st;
+    if (kind == 3) m.transmittance = mt_tr;
     return m;
 }
 
@@ -200,9 +123,9 @@ typedef struct al_tally {
 
 /* Runs one case, adding its solve and its heap calls to *t: the count
    covers the hrm calls only (hrm_default_options included). */
-static void al_run(const al_case *k, const al_scene *base, al_tally *t, hrm_result *r)
+static void al_run(const al_case *k, const mt_scene *base, al_tally *t, hrm_result *r)
 {
-    al_scene s = *base;
+    mt_scene s = *base;
     hrm_medium m;
     hrm_options o;
     hrm_real brk[3] = {(hrm_real)2.5, (hrm_real)3.7, (hrm_real)6};
@@ -228,9 +151,9 @@ static void al_run(const al_case *k, const al_scene *base, al_tally *t, hrm_resu
     }
     if (k->warp == 3) {
         o.warp.kind = HRM_WARP_USER;
-        o.warp.t_of_u = al_t_of_u;
-        o.warp.dt_du = al_dt_du;
-        o.warp.u_of_t = al_u_of_t;
+        o.warp.t_of_u = mt_t_of_u;
+        o.warp.dt_du = mt_dt_du;
+        o.warp.u_of_t = mt_u_of_t;
     }
     if (k->breaks) {
         o.breaks = brk;
@@ -261,7 +184,7 @@ static void al_run(const al_case *k, const al_scene *base, al_tally *t, hrm_resu
 /* The grid: every method x form x warp x fit x medium x breaks. */
 static void al_grid(void)
 {
-    al_scene s;
+    mt_scene s;
     al_tally per[HRM_METHOD_COUNT + 1];
     long solves = 0, answered = 0;
     int mi, f, w, e, md, b;
@@ -307,7 +230,7 @@ static void al_grid(void)
    and without a warp; an infinite ray under each warp that ends it. */
 static void al_options(void)
 {
-    al_scene s;
+    mt_scene s;
     al_tally per[HRM_METHOD_COUNT];
     long solves = 0, answered = 0;
     int mi, v, f, w;
@@ -348,7 +271,7 @@ static void al_options(void)
    did run. */
 static void al_nested(void)
 {
-    al_scene s;
+    mt_scene s;
     al_tally t[3];
     double L[3][HRM_METHOD_COUNT];
     int mi, sh, darker = 0;
@@ -377,7 +300,7 @@ static void al_nested(void)
 /* Every error path, with the exact status (so each path was reached). */
 static void al_errors(void)
 {
-    al_scene s, bad;
+    mt_scene s, bad;
     hrm_medium m, mb;
     hrm_options o;
     hrm_result r;
@@ -443,7 +366,7 @@ static void al_errors(void)
    and decoupled tau, finite and infinite rays, NULL options and stats. */
 static void al_transmittance(void)
 {
-    al_scene s;
+    mt_scene s;
     hrm_real Tr[NCH];
     hrm_stats stats;
     long before, calls = 0, answered = 0, allocs = 0;

@@ -27,6 +27,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mt_scene.h"
+
 #define NCH HRM_CHANNELS
 
 #if defined(__SANITIZE_THREAD__)
@@ -51,70 +53,11 @@ const char *__tsan_default_options(void) { return "history_size=7"; }
 #define TH_NO_STACK 0
 #endif
 
-/* The scene: sigma_t = k (1 + 0.5 sin(s)) per channel (4 times that in
-   the slab [3, 5] if slab is set), albedo 0.7, a point light at (delta,
-   D) seen through the medium (its shadow ray along the light's direction,
-   approximated by the ray's own medium from the projection to the
-   sample), emission 0.3. Read-only. */
-typedef struct th_scene {
-    double k[NCH], delta, D;
-    int shadow;             /* Li calls hrm_transmittance (1) or hrm_solve (2) */
-    int slab;
-    hrm_medium shadow_medium;
-} th_scene;
 
-static double th_sig(const th_scene *s, int c, double t)
-{
-    double v = s->k[c] * (1 + 0.5 * sin(t));
-    return s->slab && t >= 3 && t <= 5 ? 4 * v : v;
-}
 
-static void th_sa(void *u, hrm_real t, hrm_real out[NCH])
-{
-    const th_scene *s = (const th_scene *)u;
-    int c;
-    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)(0.3 * th_sig(s, c, (double)t));
-}
 
-static void th_ss(void *u, hrm_real t, hrm_real out[NCH])
-{
-    const th_scene *s = (const th_scene *)u;
-    int c;
-    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)(0.7 * th_sig(s, c, (double)t));
-}
 
-static void th_le(void *u, hrm_real t, hrm_real out[NCH])
-{
-    int c;
-    (void)u;
-    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)(0.3 + 0.01 * c + 0.0 * (double)t);
-}
 
-static void th_li(void *u, hrm_real t, hrm_real out[NCH])
-{
-    const th_scene *s = (const th_scene *)u;
-    double x = (double)t - s->delta, r2 = s->D * s->D + x * x;
-    hrm_real tr[NCH];
-    int c;
-    for (c = 0; c < NCH; ++c) tr[c] = 1;
-    if (s->shadow == 1) {
-        /* the shadow ray: from the projection of the sample towards the
-           light, through the same medium, as long as the distance D */
-        hrm_options o = hrm_default_options(HRM_SIMPSON);
-        double a = (double)t < s->delta ? (double)t : s->delta;
-        hrm_transmittance(&s->shadow_medium, (hrm_real)a, (hrm_real)(a + s->D), &o, tr, 0);
-    } else if (s->shadow == 2) {
-        /* the same ray solved whole (its medium's own Li casts none) */
-        hrm_options o = hrm_default_options(HRM_SIMPSON);
-        hrm_result r;
-        double a = (double)t < s->delta ? (double)t : s->delta;
-        o.steps = 4;
-        o.tau_mode = HRM_TAU_COUPLED; /* (cheap: tau from its 9 nodes) */
-        hrm_solve(&s->shadow_medium, (hrm_real)a, (hrm_real)(a + s->D), &o, &r);
-        for (c = 0; c < NCH; ++c) tr[c] = r.Tr[c];
-    }
-    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)((double)tr[c] / r2);
-}
 
 typedef struct th_case {
     hrm_method method;
@@ -130,43 +73,25 @@ enum {
     TH_V_COUNT
 };
 
-static void th_st(void *u, hrm_real t, hrm_real out[NCH])
-{
-    const th_scene *s = (const th_scene *)u;
-    int c;
-    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)th_sig(s, c, (double)t);
-}
 
-/* Tr(ta, tb) of th_sig without the slab, in closed form. */
-static void th_tr(void *u, hrm_real ta, hrm_real tb, hrm_real out[NCH])
-{
-    const th_scene *s = (const th_scene *)u;
-    double a = (double)ta, b = (double)tb;
-    int c;
-    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)exp(-s->k[c] * ((b - a) - 0.5 * (cos(b) - cos(a))));
-}
 
-/* A user warp: u = t / (t + 1), t in [0, inf). */
-static hrm_real th_t_of_u(void *u, hrm_real x) { (void)u; return x / (1 - x); }
-static hrm_real th_dt_du(void *u, hrm_real x) { (void)u; return 1 / ((1 - x) * (1 - x)); }
-static hrm_real th_u_of_t(void *u, hrm_real t) { (void)u; return isinf(t) ? (hrm_real)1 : t / (t + 1); }
 
 typedef struct th_out {
     hrm_status st;
     hrm_result r;
 } th_out;
 
-static hrm_medium th_medium(const th_scene *s, int callbacks)
+static hrm_medium th_medium(const mt_scene *s, int callbacks)
 {
     hrm_medium m;
     int c;
     memset(&m, 0, sizeof m);
     m.user = (void *)s;
-    m.Le = th_le;
-    m.Li = th_li;
+    m.Le = mt_le;
+    m.Li = mt_li;
     if (callbacks) {
-        m.sigma_a = th_sa;
-        m.sigma_s = th_ss;
+        m.sigma_a = mt_sa;
+        m.sigma_s = mt_ss;
     } else {
         m.flags = HRM_MEDIUM_HOMOGENEOUS;
         for (c = 0; c < NCH; ++c) {
@@ -178,9 +103,9 @@ static hrm_medium th_medium(const th_scene *s, int callbacks)
 }
 
 /* One case, into out. */
-static void th_run(const th_case *k, const th_scene *base, th_out *out)
+static void th_run(const th_case *k, const mt_scene *base, th_out *out)
 {
-    th_scene s = *base;
+    mt_scene s = *base;
     hrm_medium m;
     hrm_options o = hrm_default_options(k->method);
     hrm_real brk[2] = {(hrm_real)2.5, (hrm_real)6};
@@ -222,12 +147,12 @@ static void th_run(const th_case *k, const th_scene *base, th_out *out)
     case TH_V_NO_JUMPS: o.find_jumps = -1; break;
     case TH_V_USER_WARP:
         o.warp.kind = HRM_WARP_USER;
-        o.warp.t_of_u = th_t_of_u;
-        o.warp.dt_du = th_dt_du;
-        o.warp.u_of_t = th_u_of_t;
+        o.warp.t_of_u = mt_t_of_u;
+        o.warp.dt_du = mt_dt_du;
+        o.warp.u_of_t = mt_u_of_t;
         break;
-    case TH_V_SIGMA_T: m.sigma_t = th_st; break;
-    case TH_V_TRANSMITTANCE: m.transmittance = th_tr; break;
+    case TH_V_SIGMA_T: m.sigma_t = mt_st; break;
+    case TH_V_TRANSMITTANCE: m.transmittance = mt_tr; break;
     case TH_V_INFINITE: t1 = (hrm_real)INFINITY; break;
     default: break;
     }
@@ -240,7 +165,7 @@ static void th_run(const th_case *k, const th_scene *base, th_out *out)
 /* The table: every combination that hrm accepts (a rejected option, such
    as the exponential fit of the rectangle rule, is left out; a quadrature
    rule ignores the form and solves both). */
-static int th_cases(const th_scene *s, th_case *k, int max)
+static int th_cases(const mt_scene *s, th_case *k, int max)
 {
     int n = 0, mi, f, w, e, cb, b, v;
     for (mi = 1; mi < (int)HRM_METHOD_COUNT; ++mi)
@@ -292,7 +217,7 @@ static int th_cases(const th_scene *s, th_case *k, int max)
     return n;
 }
 
-static void th_scene_init(th_scene *s)
+static void th_scene_init(mt_scene *s)
 {
     int c;
     memset(s, 0, sizeof *s);
@@ -316,7 +241,7 @@ static int th_same(const th_out *a, const th_out *b)
 typedef struct th_job {
     const th_case *cases;
     const th_out *want;
-    const th_scene *scene;
+    const mt_scene *scene;
     int n, start;
     long solved, differ;
 } th_job;
@@ -340,7 +265,7 @@ static void th_threads(void)
 {
     static th_case cases[TH_MAX_CASES]; /* (static: large; written once, here) */
     static th_out want[TH_MAX_CASES];
-    th_scene s;
+    mt_scene s;
     th_job jobs[TH_THREADS];
     pthread_t tid[TH_THREADS];
     int n, i, ok = 1;
@@ -390,7 +315,7 @@ static void th_threads(void)
 
 typedef struct th_stack_job {
     const th_case *k;
-    const th_scene *scene;
+    const mt_scene *scene;
     th_out out;
     int idle;
 } th_stack_job;
@@ -425,7 +350,7 @@ static long th_stack_used(th_stack_job *j)
 static void th_stack(void)
 {
     static th_case cases[TH_MAX_CASES];
-    th_scene s;
+    mt_scene s;
     th_stack_job j;
     long worst[HRM_METHOD_COUNT], base, all = 0;
     int n, i, m, shadowed = 0;
