@@ -327,17 +327,23 @@
    pair's steps grow up to 5x each: at rtol 1e-14 Bogacki-Shampine strode
    over a shadow a quarter of the ray wide). Give a point light the
    equiangular warp and an occluder's edges as breakpoints.
-   Stack use, measured (tests/threads.c, th_stack: a painted stack, gcc
-   -O0 and -O2, double; float about half): with 3 channels about 30 KB
-   for the fixed-step methods, 35 KB for the Runge-Kutta pairs, 78 KB for
-   Gauss-Kronrod and 84 KB for nested Simpson (its intervals, samples and
-   left-to-right finish: HRM_NS_INTERVALS, HRM_GK_INTERVALS and
-   HRM_MAX_DEPTH set it; the transmittance layer's panel table and the
-   last abscissae are in every method's figure); with 1 channel 18 to 44
-   KB, with 8 channels 57 to 184 KB. clang -O2 inlines the adaptive
-   drivers into one frame: about 100 KB for every adaptive method with 3
-   channels, 225 KB with 8. At most (32 + 32 HRM_CHANNELS) KB in double. A shadow ray solved inside Li (hrm_transmittance or hrm_solve)
-   nests a second solve: twice that. No heap.
+   Stack use, measured (tests/stack.c: every method over its forms, warps,
+   fits, Gauss-Kronrod modes and rules, breakpoints and media, on a painted
+   thread stack), double, 3 channels, gcc -O0/-O2: 31-33 KiB for the
+   rectangle rule, Monte Carlo, the analytic march, Simpson and Euler,
+   37 KiB for RK4, Adams-Bashforth and the Runge-Kutta pairs, 43 KiB for
+   local and 82 KiB for global Gauss-Kronrod, 108 KiB for nested Simpson;
+   hrm_transmittance 31 KiB (106 with coupled tau under nested Simpson).
+   clang -O2 inlines the adaptive drivers into one frame: 101 KiB for the
+   pairs, 105 for Gauss-Kronrod, 122 for nested Simpson. About 2.2 times
+   that with 8 channels, half in float; at most (48 + 48 HRM_CHANNELS) KiB
+   in double, half in float. What sets it: every solve's context and
+   transmittance layer (25 KiB, mostly the layer's panel table of
+   HRM_TAU_PANELS), global Gauss-Kronrod's HRM_GK_INTERVALS intervals (43
+   KiB), nested Simpson's HRM_NS_INTERVALS intervals and pool (52 KiB)
+   with its finish's HRM_MAX_DEPTH stack (22 KiB) below them. A shadow ray
+   solved inside Li (hrm_solve or hrm_transmittance) nests a second solve:
+   up to twice that. No heap.
 
    ==========================================================================
    IMPORTANCE SAMPLING (options.warp; Munoz 2014 s.5)
@@ -1747,6 +1753,8 @@ static void hrm__tau_init(hrm__tau *L, hrm_real end, hrm_real tol)
     L->tol = tol;
     L->next_h = 0;
     L->nmem = 0;
+    L->hit = 0; /* (read, guarded, before the first hrm__tau_at: UB on an
+                   uninitialized stack) */
     hrm__forget(L);
 }
 
@@ -1756,6 +1764,7 @@ static void hrm__tau_rebuild(hrm__tau *L)
 {
     L->count = 0;
     L->next_h = 0;
+    L->hit = 0; /* (read, guarded, before the first hrm__tau_at) */
     hrm__forget(L);
 }
 

@@ -101,8 +101,7 @@ else
 fi
 
 # Threads and memory (tests/threads.c): the same solves on 4 threads and
-# serially, bit for bit, also under ThreadSanitizer; the stack each method
-# uses, within the manual's figure.
+# serially, bit for bit, also under ThreadSanitizer.
 # prog NAME COMPILER FLAGS...: build tests/threads.c with them and run it
 prog() {
     pname=$1
@@ -115,7 +114,25 @@ prog() {
     fi
 }
 prog threads-gcc-O2       gcc   -std=c99 -O2 $WARN -pthread
-prog threads-clang-tsan   clang -std=c99 -O1 -g $WARN -fsanitize=thread -pthread -DTH_NO_STACK=1
+prog threads-clang-tsan   clang -std=c99 -O1 -g $WARN -fsanitize=thread -pthread
+
+# Stack use (tests/stack.c): each method's largest stack over its forms, warps,
+# fits, Gauss-Kronrod modes and rules, breakpoints and media, on a painted
+# thread stack, within STACK_LIMIT (twice it with a shadow ray solved in Li).
+# stackprog NAME COMPILER FLAGS...: build tests/stack.c with them and run it
+stackprog() {
+    sname=$1
+    shift
+    configs=$((configs + 1))
+    if "$@" -I. tests/stack.c -o "$B/$sname" -lm -pthread 2> "$B/$sname.log"; then
+        tally "$sname" "$B/$sname"
+    else
+        echo "$sname: build failed"; cat "$B/$sname.log"; fail=$((fail + 1))
+    fi
+}
+stackprog stack-gcc-O2          gcc   -std=c99 -O2 $WARN
+stackprog stack-gcc-O2-float    gcc   -std=c99 -O2 $WARN -DHRM_REAL=float
+stackprog stack-clang-O2-ch8    clang -std=c99 -O2 $WARN -DHRM_CHANNELS=8
 
 # No heap use (tests/alloc.c): every method x form x warp x fit x medium,
 # the other options, nested shadow rays, every error path and every public

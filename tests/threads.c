@@ -12,11 +12,10 @@
      hrm_transmittance or hrm_solve for its shadow ray through the same
      medium (re-entrance). Under ThreadSanitizer the same run reports any
      data race.
-   - th_stack: each method's stack, measured on a painted thread stack.
-   Heap use is tests/alloc.c's.
+   Heap use is tests/alloc.c's, stack use tests/stack.c's.
    Callbacks read their scene through the user pointer; nothing here is
    mutable and global but the harness's tally. */
-#define _POSIX_C_SOURCE 200112L /* pthread_attr_setstack */
+#define _POSIX_C_SOURCE 200112L /* pthreads */
 #define HRM_IMPLEMENTATION
 #include "hrm.h"
 #define HARNESS_IMPLEMENTATION /* a single-file program: the tally lives here */
@@ -49,9 +48,6 @@ const char *__tsan_default_options(void) { return "history_size=7"; }
 #endif
 #define TH_THREADS 4
 #define TH_MAX_CASES 2048
-#ifndef TH_NO_STACK
-#define TH_NO_STACK 0
-#endif
 
 
 
@@ -300,92 +296,10 @@ static void th_threads(void)
     CHECK_INT(solved, (long)n * TH_THREADS, "every thread solved every case");
     CHECK_INT(differ, 0, "results on %d threads differing from the serial ones, bit for bit", TH_THREADS);
 }
-/* Stack use: each case run on a thread whose stack (TH_STACK bytes, ours)
-   was filled with a pattern; the bytes overwritten, less those of a
-   thread that only returns, are the solve's (callbacks' frames are small;
-   a shadow ray's hrm_transmittance or hrm_solve nests a second solve).
-   The largest per method is printed; each must stay within
-   TH_STACK_LIMIT, the manual's figure (STACK USE in hrm.h). */
-#define TH_STACK (1024L * 1024L)
-/* the manual's bound: (32 + 32 channels) KiB in double, half in float
-   (measured, the largest: 102 KB with 3 channels and 226 KB with 8, clang
-   -O2, whose inlining puts the adaptive drivers in one frame; gcc 84 and
-   184 KB) */
-#define TH_STACK_LIMIT ((32L + 32L * NCH) * 1024L * (long)sizeof(hrm_real) / 8)
-
-typedef struct th_stack_job {
-    const th_case *k;
-    const mt_scene *scene;
-    th_out out;
-    int idle;
-} th_stack_job;
-
-static void *th_stack_worker(void *arg)
-{
-    th_stack_job *j = (th_stack_job *)arg;
-    if (!j->idle) th_run(j->k, j->scene, &j->out);
-    return 0;
-}
-
-/* The bytes of the stack a job touched (-1: no thread). */
-static long th_stack_used(th_stack_job *j)
-{
-    unsigned char *mem = (unsigned char *)malloc((size_t)TH_STACK);
-    pthread_attr_t at;
-    pthread_t tid;
-    long used = -1, i;
-    if (!mem) return -1;
-    memset(mem, 0xA5, (size_t)TH_STACK);
-    if (pthread_attr_init(&at) == 0 && pthread_attr_setstack(&at, mem, (size_t)TH_STACK) == 0 &&
-        pthread_create(&tid, &at, th_stack_worker, j) == 0) {
-        pthread_join(tid, 0);
-        for (i = 0; i < TH_STACK && mem[i] == 0xA5; ++i) {} /* it grows down */
-        used = TH_STACK - i;
-    }
-    pthread_attr_destroy(&at);
-    free(mem);
-    return used;
-}
-
-static void th_stack(void)
-{
-    static th_case cases[TH_MAX_CASES];
-    mt_scene s;
-    th_stack_job j;
-    long worst[HRM_METHOD_COUNT], base, all = 0;
-    int n, i, m, shadowed = 0;
-    th_scene_init(&s);
-    n = th_cases(&s, cases, TH_MAX_CASES);
-    memset(&j, 0, sizeof j);
-    j.scene = &s;
-    j.idle = 1;
-    base = th_stack_used(&j);
-    CHECK(base >= 0, "a thread on our own stack");
-    memset(worst, 0, sizeof worst);
-    j.idle = 0;
-    for (i = 0; i < n && base >= 0; ++i) {
-        long u;
-        j.k = &cases[i];
-        u = th_stack_used(&j) - base;
-        if (!cases[i].shadow && u > worst[cases[i].method]) worst[cases[i].method] = u;
-        if (cases[i].shadow && u > all) all = u;
-        shadowed |= cases[i].shadow;
-    }
-    for (m = 1; m < (int)HRM_METHOD_COUNT; ++m) {
-        NOTE("stack use of %-20s %6ld bytes (%d channels, %s)", hrm_method_name((hrm_method)m), worst[m], NCH,
-             sizeof(hrm_real) == sizeof(float) ? "float" : "double");
-        CHECK(worst[m] > 1024 && worst[m] <= TH_STACK_LIMIT, "%s: stack use %ld within (1 KiB, %ld]",
-              hrm_method_name((hrm_method)m), worst[m], TH_STACK_LIMIT);
-    }
-    NOTE("the largest with a shadow ray (hrm_transmittance or hrm_solve) nested in Li: %ld bytes", all);
-    CHECK(shadowed && all <= 2 * TH_STACK_LIMIT, "a nested shadow ray: %ld bytes, within twice the limit", all);
-}
 
 
 int main(void)
 {
     RUN_GROUP(th_threads);
-    /* (not under ThreadSanitizer, whose frames are its own) */
-    if (!TH_NO_STACK) RUN_GROUP(th_stack);
     return harness_summary();
 }
