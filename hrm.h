@@ -85,9 +85,10 @@
    const_sigma_a / const_sigma_s. The sigma callbacks and the transmittance
    callback are then ignored, Tr is exp(-sigma_t*(tb-ta)) in closed form and
    no medium evaluation is ever made.
-   Callbacks must return finite values; coefficients must also be >= 0 and a
-   transmittance must lie in [0, 1]. Anything else stops the solve with
-   HRM_ERR_CALLBACK_VALUE.
+   Callbacks must return finite values; coefficients and sources (Le, Li)
+   must also be >= 0, and a transmittance Tr(t0, t) must lie in [0, 1] and
+   not rise as t grows. Anything else stops the solve with
+   HRM_ERR_CALLBACK_VALUE: no callback is called after the bad value.
 
    ==========================================================================
    CONFIGURATION (define before including)
@@ -120,8 +121,109 @@
    HRM_ERR_RANGE (a constant coefficient: before any evaluation; a
    callback's: at that sample) rather than inf or NaN. In double R is
    1.7e305 on a unit ray, in float 3.3e35. The RTE form's explicit steps
-   past their stability limit grow without bound: a solution beyond R ends
-   the solve with HRM_ERR_RANGE too (see ACCURACY AND COST, RTE form).
+   past their stability limit grow without bound: a solution beyond the
+   largest HRM_REAL / 1024 (what sources within R integrate to at most)
+   ends the solve with HRM_ERR_RANGE too (see ACCURACY AND COST, RTE form).
+
+   ==========================================================================
+   BAD INPUT
+   ==========================================================================
+   Every class of bad or extreme input and what it returns; one test each
+   (tests/test_bad_input.c, every method of the row, hrm_solve and
+   hrm_transmittance, the result between canary bytes). "before": rejected
+   before any callback (stats zero). "at": the solve stops at the bad value
+   (stats counted so far, no callback called after it). An error's result
+   is L = 0, Tr = 1, error = -1, njumps = 0; nothing but the result (and
+   hrm_transmittance's stats) is written. R: see ERRORS, Range.
+   pointers
+     medium NULL, result NULL (hrm_transmittance: Tr NULL, stats zeroed)
+                                   HRM_ERR_NULL_ARGUMENT, before
+     options NULL; stats NULL (hrm_transmittance); every callback NULL
+                                   valid: defaults; absent terms
+     breaks NULL with nbreaks > 0  HRM_ERR_BAD_BREAKS, before
+     a user warp without t_of_u, dt_du or u_of_t
+                                   HRM_ERR_BAD_WARP, before
+   the interval
+     t0 NaN or +-inf; t1 NaN or -inf; t1 < t0; t1 = +inf without a warp
+     that ends it                  HRM_ERR_BAD_INTERVAL, before
+     t1 = +inf under the distance or equiangular warp; t1 = t0; t1
+     denormal; both ends 1e30      valid (warnings where t cannot resolve
+                                   the medium: ROUNDOFF, H_MIN, TOLERANCE)
+     t1 - t0 overflows             HRM_ERR_RANGE, before
+     t1 huge (max / 4): coefficients or sources beyond R over that length
+                                   HRM_ERR_RANGE (constants before, callbacks at)
+   options: enumerators and counts
+     method < 0 or >= HRM_METHOD_COUNT (also from hrm_default_options)
+                                   HRM_ERR_BAD_METHOD, before
+     steps < 0 (INT_MIN)           HRM_ERR_BAD_STEPS, before
+     steps huge                    valid: fixed-step methods take N (no cap);
+                                   nested Simpson and Gauss-Kronrod cap their
+                                   initial panels; the pairs ignore it
+     form, control, gk_mode, gk_rule, tau_mode unknown; find_jumps outside
+     -1..1; exponential outside 0..2, or 1, 2 with a rule that has no fit,
+     the RTE form or coupled tau   HRM_ERR_BAD_OPTION, before
+     jitter, stratified any nonzero int
+                                   valid: on
+   options: tolerances, step bounds, budgets
+     rtol, atol, h_min, h_max, h0, tau_tol negative, NaN or infinite;
+     h_max > 0 with h_min > h_max  HRM_ERR_BAD_OPTION, before
+     max_evals < 0, or below one step of the method on every piece
+     (adaptive)                    HRM_ERR_BAD_OPTION, before
+     rtol denormal                 raised to 100 eps: HRM_WARN_RTOL_CLIPPED
+                                   (adaptive; fixed-step ignore rtol)
+     tau_tol denormal              raised to 64 eps, silently
+     rtol, atol, tau_tol, h_max, h0 huge; h_min huge (one step, H_MIN
+     where it is refused); h_min, h0 denormal; max_evals LONG_MAX, or 1 for
+     a fixed-step method (ignored) valid
+   breakpoints
+     nbreaks < 0 or > HRM_MAX_BREAKS (even INT_MAX, which no budget check
+     sees first); an entry NaN or infinite, not strictly increasing, below
+     t0 or above t1                HRM_ERR_BAD_BREAKS, before
+     entries at t0 and t1          valid (no piece of zero length)
+   warps
+     kind unknown; sigma_ref or D negative, NaN or infinite; delta not
+     finite - also on an empty ray HRM_ERR_BAD_WARP, before
+     sigma_ref huge                valid: lowered to what the ray resolves
+     sigma_ref denormal; D or delta huge (the light far from the whole
+     ray)                          valid: no warp (the map is affine)
+     D = 0 with the light on the ray
+                                   HRM_ERR_SINGULAR, before
+     user warp: u_of_t not increasing or not finite at t0 or t1
+                                   HRM_ERR_BAD_WARP (only u_of_t called)
+     user warp: t_of_u, u_of_t NaN or infinite inside the ray; dt_du < 0,
+     NaN or infinite (a warp that folds back)
+                                   HRM_ERR_CALLBACK_VALUE, at
+     dt_du beyond R / (sigma or source)
+                                   HRM_ERR_RANGE, at
+   the medium
+     const_sigma_a, const_sigma_s negative, NaN or infinite (homogeneous);
+     an unknown bit in flags       HRM_ERR_BAD_MEDIUM, before
+     a constant beyond R           HRM_ERR_RANGE, before
+     a constant denormal; within R (warnings where the ray is opaque
+     within t's resolution)        valid
+   callbacks' values
+     sigma_a, sigma_s, sigma_t NaN, infinite or negative (even -1e-30);
+     Le, Li NaN, infinite or negative; a transmittance NaN, infinite,
+     below 0, above 1, or rising along the ray (beyond 64 eps of
+     max(1, tau) relative)         HRM_ERR_CALLBACK_VALUE, at
+     a coefficient, or sigma_a Le + sigma_s Li, beyond R
+                                   HRM_ERR_RANGE, at
+     any value denormal; sources within R (also emission per length)
+                                   valid
+   the other functions
+     hrm_equiangular_warp: a NULL argument; dir zero; a value not finite
+                                   HRM_ERR_NULL_ARGUMENT, HRM_ERR_BAD_WARP;
+                                   *warp zeroed (HRM_WARP_NONE) where given
+     hrm_equiangular_warp: a light 1e307 or 1e-310 off the ray
+                                   valid: D to full precision
+     hrm_sphere_breaks: a NULL argument; dir zero; radius negative or NaN;
+     t0 not finite, t1 < t0 or NaN; a point not finite
+                                   HRM_ERR_NULL_ARGUMENT, HRM_ERR_BAD_WARP;
+                                   *count 0 where given, out untouched
+     hrm_sphere_breaks: t1 = +inf; a sphere 1e307 away
+                                   valid
+     hrm_status_string, hrm_method_name: unknown values
+                                   "unknown status", "?"
 
    ==========================================================================
    THREAD SAFETY
@@ -628,8 +730,8 @@ typedef HRM_REAL hrm_real;
     X(HRM_ERR_BAD_STEPS, -3, "options.steps is negative")                    \
     X(HRM_ERR_BAD_METHOD, -4, "unknown method")                              \
     X(HRM_ERR_BAD_OPTION, -5, "an option is out of range (form, tolerances, step bounds, budget)") \
-    X(HRM_ERR_BAD_MEDIUM, -6, "a constant coefficient of the medium is negative or not finite") \
-    X(HRM_ERR_CALLBACK_VALUE, -7, "a callback returned NaN, an infinity, a negative coefficient or a transmittance outside [0,1]") \
+    X(HRM_ERR_BAD_MEDIUM, -6, "a constant coefficient of the medium is negative or not finite, or an unknown flag") \
+    X(HRM_ERR_CALLBACK_VALUE, -7, "a callback returned NaN, an infinity, a negative coefficient or source, or a transmittance outside [0,1] or rising along the ray") \
     X(HRM_ERR_BAD_WARP, -8, "warp parameters invalid: sigma_ref or D negative or not finite, a user warp without its callbacks or not increasing") \
     X(HRM_ERR_SINGULAR, -9, "the equiangular light lies on the ray within [t0, t1] (D = 0): the integral diverges") \
     X(HRM_ERR_BAD_BREAKS, -10, "breakpoints: nbreaks negative or above HRM_MAX_BREAKS, NULL with nbreaks > 0, or an entry not finite, not increasing or outside [t0, t1]") \
@@ -868,7 +970,8 @@ HRM_API hrm_status hrm_solve(const hrm_medium *medium, hrm_real t0, hrm_real t1,
    homogeneous medium), else sigma_t integrated in t by the transmittance
    layer to options->tau_tol (HRM_TAU_COUPLED: by options' method over its
    nodes). options->warp is used only to end an infinite ray.
-   Tr: required. stats: optional. On error Tr is 1 in every channel. */
+   Tr: required. stats: optional. On error Tr is 1 in every channel and
+   stats, where given, holds what was counted (zero for a NULL Tr). */
 HRM_API hrm_status hrm_transmittance(const hrm_medium *medium, hrm_real t0,
                                      hrm_real t1, const hrm_options *options,
                                      hrm_real Tr[HRM_CHANNELS], hrm_stats *stats);
@@ -878,7 +981,8 @@ HRM_API hrm_status hrm_transmittance(const hrm_medium *medium, hrm_real t0,
    from a dot product, D from a cross product, so a light near the ray
    keeps its full precision. warp: required; overwritten whole.
    Returns HRM_ERR_NULL_ARGUMENT, HRM_ERR_BAD_WARP (dir zero or a value not
-   finite) or HRM_OK. */
+   finite; *warp is then zeroed, HRM_WARP_NONE, wherever warp is given) or
+   HRM_OK. */
 HRM_API hrm_status hrm_equiangular_warp(const hrm_real origin[3], const hrm_real dir[3],
                                         const hrm_real light[3], hrm_warp *warp);
 
@@ -894,7 +998,8 @@ HRM_API hrm_status hrm_equiangular_warp(const hrm_real origin[3], const hrm_real
    the cone itself (a double root), where they are good to about the
    square root of epsilon relative - there the shadow's extent along the
    ray is itself that small. Returns HRM_ERR_NULL_ARGUMENT, HRM_ERR_BAD_WARP
-   (dir zero, radius negative, a value not finite, or t1 < t0; *count 0)
+   (dir zero, radius negative, a value not finite, or t1 < t0; *count 0
+   wherever count is given)
    or HRM_OK; a light inside the sphere, which shadows the whole ray, gives
    no breakpoint. */
 HRM_API hrm_status hrm_sphere_breaks(const hrm_real origin[3], const hrm_real dir[3],
@@ -1363,6 +1468,8 @@ typedef struct hrm__ctx {
     hrm_real s_end;        /* the last abscissa: t1, or s(pb) when t1 = inf */
     hrm_real scale[2 * HRM__CH]; /* adaptive: coarse |total| of (tau, L) / 2 */
     int rough_left;        /* adaptive: rough intervals still allowed */
+    int tr_have;           /* the transmittance callback's previous call: */
+    hrm_real tr_s, tr_v[HRM__CH]; /* its abscissa and values */
 } hrm__ctx;
 
 static void hrm__fill(hrm_real *v, int n, hrm_real x)
@@ -1371,10 +1478,11 @@ static void hrm__fill(hrm_real *v, int n, hrm_real x)
     for (i = 0; i < n; ++i) v[i] = x;
 }
 
-/* Validate callback output. kind 0: finite, 1: coefficient (>= 0),
-   2: transmittance ([0, 1]). A failure is recorded once and the values are
-   zeroed so that the arithmetic in flight stays harmless until the driver
-   notices and stops. */
+/* Validate callback output. kind 0: finite, 1: coefficient (>= 0, within
+   the range), 2: transmittance ([0, 1]), 3: source (>= 0). A failure is
+   recorded once and the values are zeroed so that the arithmetic in flight
+   stays harmless until the driver notices and stops; no callback is called
+   after it. */
 static void hrm__check(hrm__ctx *c, hrm_real *v, int kind)
 {
     int i;
@@ -1417,12 +1525,15 @@ static long hrm__spent(const hrm__ctx *c)
 
 /* The RTE form's explicit steps past their stability limit grow without
    bound: a state beyond the range ends the solve (HRM_ERR_RANGE) before it
-   turns inf, then NaN (a step size from NaN never ended the loop). */
+   turns inf, then NaN (a step size from NaN never ended the loop). The
+   range of a state is the largest real / 1024: sources and coefficients
+   within R integrate to at most R (t1 - t0). */
 static void hrm__state_check(hrm__ctx *c, const hrm_real y[HRM__NY])
 {
+    hrm_real lim = hrm__range(1);
     int i;
     for (i = 0; i < HRM__NY; ++i)
-        if (!(HRM_FABS(y[i]) <= c->range) && c->status == HRM_OK) c->status = HRM_ERR_RANGE;
+        if (!(HRM_FABS(y[i]) <= lim) && c->status == HRM_OK) c->status = HRM_ERR_RANGE;
 }
 
 /* The sigma callbacks at s, those that are wanted and present (absent ones
@@ -1436,20 +1547,22 @@ static int hrm__coeffs(hrm__ctx *c, hrm_real s, int want_sa, int want_ss, int wa
     hrm__fill(sa, HRM__CH, 0);
     hrm__fill(ss, HRM__CH, 0);
     hrm__fill(st, HRM__CH, 0);
-    if (m->sigma_a && (want_sa || derive_st)) {
+    if (m->sigma_a && (want_sa || derive_st) && c->status == HRM_OK) {
         m->sigma_a(m->user, s, sa);
         hrm__check(c, sa, 1);
         called = 1;
     }
-    if (m->sigma_s && (want_ss || derive_st)) {
+    if (m->sigma_s && (want_ss || derive_st) && c->status == HRM_OK) {
         m->sigma_s(m->user, s, ss);
         hrm__check(c, ss, 1);
         called = 1;
     }
     if (want_st && m->sigma_t) {
-        m->sigma_t(m->user, s, st);
-        hrm__check(c, st, 1);
-        called = 1;
+        if (c->status == HRM_OK) {
+            m->sigma_t(m->user, s, st);
+            hrm__check(c, st, 1);
+            called = 1;
+        }
     } else if (want_st) {
         for (i = 0; i < HRM__CH; ++i) st[i] = sa[i] + ss[i];
     }
@@ -1460,6 +1573,35 @@ static hrm_real hrm__abscissa(const hrm__ctx *c, hrm_real off)
 {
     hrm_real s = c->t0 + off;
     return s < c->t1 ? s : c->t1; /* t0 + (t1 - t0) may round past t1 */
+}
+
+/* The transmittance callback Tr(t0, s), validated and counted: within
+   [0, 1], and not rising along the ray against its previous call (beyond
+   the rounding of a closed form: 64 epsilons of max(1, tau) relative). */
+static void hrm__tr_call(hrm__ctx *c, hrm_real s, hrm_real tr[HRM__CH])
+{
+    hrm_real tiny = HRM__TINY;
+    int i, far = s > c->tr_s;
+    if (c->status != HRM_OK) {
+        hrm__fill(tr, HRM__CH, 1);
+        return;
+    }
+    c->m->transmittance(c->m->user, c->t0, s, tr);
+    hrm__check(c, tr, 2);
+    c->stats.medium_evals++;
+    if (c->status != HRM_OK) return;
+    for (i = 0; i < HRM__CH && c->tr_have && s != c->tr_s; ++i) {
+        hrm_real near = far ? c->tr_v[i] : tr[i], beyond = far ? tr[i] : c->tr_v[i];
+        hrm_real slack = near > 0 ? 64 * HRM__EPS * near * (1 - HRM_LOG(near)) : 0;
+        if (beyond > near + slack + tiny) {
+            c->status = HRM_ERR_CALLBACK_VALUE;
+            hrm__fill(tr, HRM__CH, 1);
+            return;
+        }
+    }
+    c->tr_have = 1;
+    c->tr_s = s;
+    memcpy(c->tr_v, tr, sizeof c->tr_v);
 }
 
 /* A sample within 8 ulps of a breakpoint that ends the current piece (or
@@ -1981,8 +2123,10 @@ static void hrm__map(hrm__ctx *c, hrm_real p, hrm_real *off, hrm_real *J)
         break;
     }
     case HRM_WARP_USER:
+        o = j = 0;
+        if (c->status != HRM_OK) break;
         o = c->uw->t_of_u(c->uw->user, p) - c->t0;
-        j = c->uw->dt_du(c->uw->user, p);
+        if (HRM__FINITE(o)) j = c->uw->dt_du(c->uw->user, p);
         if (!(HRM__FINITE(o) && HRM__FINITE(j) && j >= 0)) {
             if (c->status == HRM_OK) c->status = HRM_ERR_CALLBACK_VALUE;
             o = j = 0;
@@ -2023,9 +2167,7 @@ static void hrm__tau_reach(hrm__ctx *c, hrm_real reach, hrm_real *x, hrm_real *t
         /* the largest Tr over the channels at offset d (thinnest channel) */
 #define HRM__TR_MOST(d, most)                                                 \
     do {                                                                      \
-        c->m->transmittance(c->m->user, c->t0, hrm__abscissa(c, d), tr);      \
-        hrm__check(c, tr, 2);                                                 \
-        c->stats.medium_evals++;                                              \
+        hrm__tr_call(c, hrm__abscissa(c, d), tr);                             \
         for (i = 0, most = tr[0]; i < HRM__CH; ++i) most = tr[i] > most ? tr[i] : most; \
     } while (0)
         hrm_real lo = 0, hi = HRM__FINITE(c->T) ? c->T : 1, most, limit = HRM_EXP(-reach);
@@ -2170,6 +2312,15 @@ static hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_warp *w)
             c->warp = HRM_WARP_NONE; /* light on the ray's line, outside: 1/r^2 is smooth */
             break;
         }
+        /* A light far from the whole ray (|t - delta| below eps^(1/4) D):
+           the warp's dt/du = D (1 + ((t - delta) / D)^2) varies by less
+           than sqrt(eps), an affine map, and D itself may be past the
+           range: none. */
+        if (!inf && HRM_FABS(da) <= HRM_SQRT(HRM_SQRT(HRM__EPS)) * D &&
+            HRM_FABS(db) <= HRM_SQRT(HRM_SQRT(HRM__EPS)) * D) {
+            c->warp = HRM_WARP_NONE;
+            break;
+        }
         c->w_D = D;
         c->w_delta = w->delta;
         c->w_ra = HRM_HYPOT(da, D);
@@ -2199,7 +2350,7 @@ static hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_warp *w)
     case HRM_WARP_USER:
         c->uw = w;
         c->pa = w->u_of_t(w->user, c->t0);
-        c->pb = w->u_of_t(w->user, c->t1);
+        c->pb = HRM__FINITE(c->pa) ? w->u_of_t(w->user, c->t1) : c->pa;
         if (!(HRM__FINITE(c->pa) && HRM__FINITE(c->pb) && c->pb > c->pa)) return HRM_ERR_BAD_WARP;
         if (inf) c->pb -= (HRM_FABS(c->pa) + HRM_FABS(c->pb)) * HRM__EPS;
         break;
@@ -2216,29 +2367,61 @@ static hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_warp *w)
     return HRM_OK;
 }
 
+/* |v| scaled by its largest component: no overflow or underflow where |v|
+   itself is representable (a light 1e300 away, or 1e-310 off the ray).
+   v finite. */
+static double hrm__norm3(const double v[3])
+{
+    double m = 0, q = 0, a;
+    int i;
+    for (i = 0; i < 3; ++i) m = fabs(v[i]) > m ? fabs(v[i]) : m;
+    if (m == 0) return 0;
+    for (i = 0; i < 3; ++i) {
+        a = v[i] / m;
+        q += a * a;
+    }
+    return m * sqrt(q);
+}
+
+/* A direction made unit length (in double whatever hrm_real is); its
+   length in *len. Returns 0 where dir is zero or not finite. */
+static int hrm__unit3(const hrm_real dir[3], double d[3], double *len)
+{
+    int i;
+    for (i = 0; i < 3; ++i) {
+        d[i] = (double)dir[i];
+        if (!HRM__FINITE(d[i])) return 0;
+    }
+    *len = hrm__norm3(d);
+    if (!(*len > 0 && HRM__FINITE(*len))) return 0;
+    for (i = 0; i < 3; ++i) d[i] /= *len;
+    return 1;
+}
+
 HRM__DEF hrm_status hrm_equiangular_warp(const hrm_real origin[3], const hrm_real dir[3],
                                          const hrm_real light[3], hrm_warp *warp)
 {
-    hrm_real v[3], x[3], dd, vd;
+    double v[3], d[3], x[3], len, vd = 0, delta, D;
     int i;
+    if (warp) memset(warp, 0, sizeof *warp);
     if (!origin || !dir || !light || !warp) return HRM_ERR_NULL_ARGUMENT;
-    for (i = 0; i < 3; ++i) v[i] = light[i] - origin[i];
-    dd = dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2];
-    vd = v[0] * dir[0] + v[1] * dir[1] + v[2] * dir[2];
-    /* |v x dir| is the light's distance from the ray's line times |dir|,
-       without the cancellation of sqrt(|v|^2 - delta^2). */
-    x[0] = v[1] * dir[2] - v[2] * dir[1];
-    x[1] = v[2] * dir[0] - v[0] * dir[2];
-    x[2] = v[0] * dir[1] - v[1] * dir[0];
-    if (!(dd > 0 && HRM__FINITE(dd) && HRM__FINITE(vd))) return HRM_ERR_BAD_WARP;
-    memset(warp, 0, sizeof *warp);
-    warp->kind = HRM_WARP_EQUIANGULAR;
-    warp->delta = vd / dd;
-    warp->D = HRM_SQRT(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) / dd;
-    if (!(HRM__FINITE(warp->delta) && HRM__FINITE(warp->D))) {
-        memset(warp, 0, sizeof *warp);
-        return HRM_ERR_BAD_WARP;
+    if (!hrm__unit3(dir, d, &len)) return HRM_ERR_BAD_WARP;
+    for (i = 0; i < 3; ++i) {
+        v[i] = (double)light[i] - (double)origin[i];
+        if (!HRM__FINITE(v[i])) return HRM_ERR_BAD_WARP;
+        vd += v[i] * d[i];
     }
+    /* |v x d| is the light's distance from the ray's line, without the
+       cancellation of sqrt(|v|^2 - delta^2). */
+    x[0] = v[1] * d[2] - v[2] * d[1];
+    x[1] = v[2] * d[0] - v[0] * d[2];
+    x[2] = v[0] * d[1] - v[1] * d[0];
+    delta = vd / len;
+    D = hrm__norm3(x) / len;
+    if (!(HRM__FINITE((hrm_real)delta) && HRM__FINITE((hrm_real)D))) return HRM_ERR_BAD_WARP;
+    warp->kind = HRM_WARP_EQUIANGULAR;
+    warp->delta = (hrm_real)delta;
+    warp->D = (hrm_real)D;
     return HRM_OK;
 }
 
@@ -2247,24 +2430,23 @@ HRM__DEF hrm_status hrm_sphere_breaks(const hrm_real origin[3], const hrm_real d
                                       hrm_real radius, hrm_real t0, hrm_real t1,
                                       hrm_real out[2], int *count)
 {
-    /* In double whatever hrm_real is: v(t) = w + t d from the light, u the
-       unit vector to the center, cos^2 of the cone's half-angle k =
-       1 - R^2 / |c - L|^2: (v.u)^2 - k (v.v) = 0, with v.u at least
-       |c - L| k (beyond the circle of tangency). */
-    double w[3], d[3], u[3], dist = 0, k, A, B, C, disc, q, r[2], wu = 0, du = 0, wd = 0, ww = 0, dd = 0;
+    /* In double whatever hrm_real is, along the unit direction d (s = t
+       len): v(s) = w + s d from the light, u the unit vector to the
+       center, cos^2 of the cone's half-angle k = 1 - R^2 / |c - L|^2:
+       (v.u)^2 - k (v.v) = 0, with v.u at least |c - L| k (beyond the
+       circle of tangency). */
+    double w[3], d[3], u[3], len, dist, k, A, B, C, disc, q, r[2], wu = 0, du = 0, wd = 0, ww = 0;
     int i, n = 0, j;
+    if (count) *count = 0;
     if (!origin || !dir || !light || !center || !out || !count) return HRM_ERR_NULL_ARGUMENT;
-    *count = 0;
+    if (!hrm__unit3(dir, d, &len)) return HRM_ERR_BAD_WARP;
     for (i = 0; i < 3; ++i) {
         w[i] = (double)origin[i] - (double)light[i];
-        d[i] = (double)dir[i];
         u[i] = (double)center[i] - (double)light[i];
-        dist += u[i] * u[i];
-        dd += d[i] * d[i];
+        if (!(HRM__FINITE(w[i]) && HRM__FINITE(u[i]))) return HRM_ERR_BAD_WARP;
     }
-    dist = sqrt(dist);
-    if (!(HRM__FINITE(dist) && HRM__FINITE(dd) && dd > 0 && HRM__FINITE(radius) && radius >= 0 &&
-          HRM__FINITE(t0) && t1 >= t0 && HRM__FINITE(w[0] + w[1] + w[2])))
+    dist = hrm__norm3(u);
+    if (!(HRM__FINITE(radius) && radius >= 0 && HRM__FINITE(t0) && t1 >= t0))
         return HRM_ERR_BAD_WARP;
     if (!(dist > (double)radius) || radius == 0) return HRM_OK; /* light inside, or no sphere */
     for (i = 0; i < 3; ++i) {
@@ -2272,12 +2454,12 @@ HRM__DEF hrm_status hrm_sphere_breaks(const hrm_real origin[3], const hrm_real d
         wu += w[i] * u[i];
         du += d[i] * u[i];
         wd += w[i] * d[i];
-        ww += w[i] * w[i];
     }
+    ww = hrm__norm3(w);
     k = 1 - ((double)radius / dist) * ((double)radius / dist);
-    A = du * du - k * dd;
+    A = du * du - k;
     B = 2 * (wu * du - k * wd);
-    C = wu * wu - k * ww;
+    C = (wu - sqrt(k) * ww) * (wu + sqrt(k) * ww);
     if (A == 0) {
         if (B == 0) return HRM_OK;
         r[0] = -C / B;
@@ -2292,9 +2474,9 @@ HRM__DEF hrm_status hrm_sphere_breaks(const hrm_real origin[3], const hrm_real d
         n = 2;
     }
     for (j = 0; j < n; ++j) {
-        double t = r[j];
+        double t = r[j] / len;
         if (!(t > (double)t0 && t < (double)t1)) continue;
-        if (!(wu + t * du >= dist * k)) continue; /* the cone's other nappe, or before the sphere */
+        if (!(wu + r[j] * du >= dist * k)) continue; /* the cone's other nappe, or before the sphere */
         out[*count] = (hrm_real)t;
         ++*count;
     }
@@ -2344,9 +2526,7 @@ static void hrm__tau_of(hrm__ctx *c, hrm_real off, hrm_real tau[HRM__CH])
     } else if (c->decoupled) {
         hrm__tau_at(c, c->tau, off, tau);
     } else {
-        c->m->transmittance(c->m->user, c->t0, hrm__abscissa(c, off), tr);
-        hrm__check(c, tr, 2);
-        c->stats.medium_evals++;
+        hrm__tr_call(c, hrm__abscissa(c, off), tr);
         hrm__neg_log(tr, tau);
     }
 }
@@ -2364,7 +2544,7 @@ static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
     const hrm_medium *m = c->m;
     hrm_real sa[HRM__CH], ss[HRM__CH], st[HRM__CH], v[HRM__CH], q[HRM__CH];
     hrm_real J, s, s_raw, sig[HRM__CH], vmax[HRM__CH];
-    int i, em = 0, sc = 0, sig_known;
+    int i, em = 0, sc = 0, called, sig_known;
 
     hrm__map(c, p, &pt->off, &J);
     pt->p = p;
@@ -2428,10 +2608,10 @@ static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
                 }
             }
         } else if (c->closed) {
-            m->transmittance(m->user, c->t0, s, pt->tr);
-            hrm__check(c, pt->tr, 2);
+            long before = c->stats.medium_evals;
+            hrm__tr_call(c, s, pt->tr);
             hrm__tau_of_tr(pt);
-            medium = 1;
+            if (c->stats.medium_evals > before) medium = 0; /* one per abscissa */
         }
         c->stats.medium_evals += medium;
     }
@@ -2459,19 +2639,21 @@ static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
         sc |= ss[i] > 0;
         q[i] = 0;
     }
-    em &= c->use_le;
+    em &= c->use_le && c->status == HRM_OK;
     sc &= c->use_li;
+    called = em;
     if (em) {
         m->Le(m->user, s, v);
-        hrm__check(c, v, 0);
+        hrm__check(c, v, 3);
         for (i = 0; i < HRM__CH; ++i) {
             q[i] += (c->per_length ? v[i] : sa[i] * v[i]);
             vmax[i] = v[i];
         }
     }
-    if (sc) {
+    if (sc && c->status == HRM_OK) {
+        called = 1;
         m->Li(m->user, s, v);
-        hrm__check(c, v, 0);
+        hrm__check(c, v, 3);
         for (i = 0; i < HRM__CH; ++i) {
             q[i] += ss[i] * v[i];
             if (v[i] > vmax[i]) vmax[i] = v[i];
@@ -2489,7 +2671,7 @@ static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
         hrm_real b = sig_known && sig[i] > 0 ? q[i] / sig[i] : vmax[i];
         if (b > c->src_max[i]) c->src_max[i] = b;
     }
-    c->stats.evals += em | sc;
+    c->stats.evals += called;
     for (i = 0; i < HRM__CH; ++i) {
         pt->gq[i] = q[i] * J;
         pt->gs[i] = c->need_st ? st[i] * J : 0; /* a closed form has tau already */
@@ -2524,9 +2706,7 @@ static void hrm__closed_tr(hrm__ctx *c, hrm_real Tr[HRM__CH])
             Tr[i] = c->st[i] == 0 ? 1 : HRM_EXP(-c->st[i] * c->T); /* no 0 * inf */
         return;
     }
-    c->m->transmittance(c->m->user, c->t0, c->s_end, Tr);
-    hrm__check(c, Tr, 2);
-    c->stats.medium_evals++;
+    hrm__tr_call(c, c->s_end, Tr);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -4563,7 +4743,8 @@ static hrm_status hrm__resolve(const hrm_options *in, hrm_options *o)
     /* below a few dozen epsilons round-off in tau dominates any estimate */
     if (o->tau_tol < 64 * HRM__EPS) o->tau_tol = 64 * HRM__EPS;
     /* A budget below one step of the method on every piece could not be
-       honoured. */
+       honoured (a breakpoint count out of range is the breakpoints' error). */
+    if (o->nbreaks < 0 || o->nbreaks > HRM_MAX_BREAKS) return HRM_ERR_BAD_BREAKS;
     if (o->max_evals < hrm__piece_cost(o) * ((long)(o->nbreaks > 0 ? o->nbreaks : 0) + 1))
         return HRM_ERR_BAD_OPTION;
     return HRM_OK;
@@ -4595,6 +4776,9 @@ static hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, const hrm_medium *m, 
         if (!HRM__FINITE(b) || b < t0 || b > t1 || (i > 0 && !(b > o->breaks[i - 1])))
             return HRM_ERR_BAD_BREAKS;
     }
+    if (m->flags & ~(HRM_MEDIUM_HOMOGENEOUS | HRM_EMISSION_PER_LENGTH)) return HRM_ERR_BAD_MEDIUM;
+    /* the warp's parameters, even where an empty ray will not use them */
+    if (hrm__warp_valid(&o->warp) != HRM_OK) return HRM_ERR_BAD_WARP;
     c->homog = (m->flags & HRM_MEDIUM_HOMOGENEOUS) != 0;
     c->per_length = (m->flags & HRM_EMISSION_PER_LENGTH) != 0;
     c->rte = o->form == HRM_FORM_RTE && mi->rte;
@@ -4781,7 +4965,7 @@ static hrm_real hrm__unmap(hrm__ctx *c, hrm_real off)
         p = HRM_ATAN2(c->t0 + off - c->w_delta, c->w_D);
         break;
     case HRM_WARP_USER:
-        p = c->uw->u_of_t(c->uw->user, c->t0 + off);
+        p = c->status == HRM_OK ? c->uw->u_of_t(c->uw->user, c->t0 + off) : c->pa;
         break;
     default:
         p = off;
@@ -4872,7 +5056,8 @@ static void hrm__solve_pieces(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM_
            pieces multiply) */
         hrm__state_check(c, y);
         for (i = 0; i < HRM__CH; ++i)
-            if (!(HRM_FABS(acc[i]) <= c->range) && c->status == HRM_OK) c->status = HRM_ERR_RANGE;
+            if (!(HRM_FABS(acc[i]) <= hrm__range(1)) && c->status == HRM_OK)
+                c->status = HRM_ERR_RANGE;
     }
     memcpy(y, acc, sizeof acc);
     memcpy(c->err_acc, err, sizeof err);
@@ -5214,7 +5399,10 @@ HRM__DEF hrm_status hrm_transmittance(const hrm_medium *medium, hrm_real t0,
     hrm_real L[HRM__CH], out[HRM__CH], err[HRM__CH];
     hrm_stats s;
     hrm_status st;
-    if (!Tr) return HRM_ERR_NULL_ARGUMENT;
+    if (!Tr) {
+        if (stats) memset(stats, 0, sizeof *stats);
+        return HRM_ERR_NULL_ARGUMENT;
+    }
     if (!medium) {
         hrm__fill(Tr, HRM__CH, 1);
         if (stats) memset(stats, 0, sizeof *stats);

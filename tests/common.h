@@ -50,6 +50,7 @@ void transmittance_tests(void);
 void breaks_tests(void);
 void exponential_tests(void);
 void extremes_tests(void);
+void bad_input_tests(void);
 
 /* ------------------------------------------------------------------------
    Precision and small numerics

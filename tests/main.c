@@ -17,5 +17,6 @@ int main(void)
     breaks_tests();
     exponential_tests();
     extremes_tests();
+    bad_input_tests();
     return harness_summary();
 }

@@ -12,7 +12,7 @@ configs=0
 
 # The test program: several translation units, each including hrm.h; only
 # test_tables.c compiles the implementation (every file with HRM_STATIC).
-SRCS="tests/main.c tests/common.c tests/test_tables.c tests/test_fixed.c tests/test_adaptive.c tests/test_warp.c tests/test_transmittance.c tests/test_breaks.c tests/test_exponential.c tests/test_extremes.c"
+SRCS="tests/main.c tests/common.c tests/test_tables.c tests/test_fixed.c tests/test_adaptive.c tests/test_warp.c tests/test_transmittance.c tests/test_breaks.c tests/test_exponential.c tests/test_extremes.c tests/test_bad_input.c"
 
 # build NAME COMPILER FLAGS... : compile each file of the test program to
 # an object, all at once (they are independent; the configurations still
