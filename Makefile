@@ -14,12 +14,19 @@
 #                for FUZZ_TIME seconds (default 60) from the seed corpus
 #                tests/corpus/; findings in build/fuzz/crashes/ (needs clang's
 #                libFuzzer: Debian package libfuzzer-14-dev where missing)
+#   make render  the renderer-level comparison (examples/render.c): two scenes,
+#                a reference, every configuration over a ladder of budgets,
+#                sheets and summary.md in render/out/ only (ignored by git)
+#   make render-quick   the same at a quarter of the pixels (render/out/quick/)
+#   make render-snapshot   make render, then refresh the committed snapshot
+#                examples/results/ (the overview sheets and summary.md); on
+#                request, then commit
 #   make examples
 CC      ?= cc
 WARN    = -Wall -Wextra -pedantic -Werror -Wshadow -Wdouble-promotion
 BUILD   = build
 
-.PHONY: all test bench bench-quick bench-snapshot examples fuzz clean
+.PHONY: all test bench bench-quick bench-snapshot render render-quick render-snapshot examples fuzz clean
 
 all: test
 
@@ -73,9 +80,24 @@ $(BUILD)/example_ray: examples/ray.c hrm.h
 	@mkdir -p $(BUILD)
 	$(CC) -std=c99 -O2 $(WARN) -I. examples/ray.c -o $@ -lm
 
-$(BUILD)/example_render: examples/render.c hrm.h
+$(BUILD)/example_render: examples/render.c examples/png.h hrm.h
 	@mkdir -p $(BUILD)
-	$(CC) -std=c99 -O2 $(WARN) -I. examples/render.c -o $@ -lm
+	$(CC) -std=c99 -O2 $(WARN) -I. examples/render.c -o $@ -lm -pthread
+
+# render/out/ is the run's output (ignored by git); examples/results/ the
+# committed snapshot the README shows, refreshed only by make render-snapshot.
+render: $(BUILD)/example_render
+	@mkdir -p render/out
+	./$(BUILD)/example_render render/out
+
+render-quick: $(BUILD)/example_render
+	@mkdir -p render/out/quick
+	./$(BUILD)/example_render render/out/quick all quick
+
+render-snapshot: render
+	@mkdir -p examples/results
+	cp render/out/shafts_overview.png render/out/cloud_overview.png render/out/summary.md \
+	    examples/results/
 
 examples: $(BUILD)/example_ray $(BUILD)/example_render
 
