@@ -1,5 +1,8 @@
 /* ray.c - one camera ray through a heterogeneous, emitting medium lit by a
    point light: what a renderer's volume integrator does per pixel with hrm.h.
+   First fixed step counts against a converged run, then an adaptive method
+   as a renderer sets it up: rtol from the bench's advice, the light's
+   equiangular warp, and a budget of samples per ray.
 
    Build: make examples   (or: cc -std=c99 -O2 -I.. ray.c -lm)
 
@@ -179,6 +182,41 @@ int main(void) {
                (double)res.L[0], (double)res.L[1], (double)res.L[2],
                (double)res.Tr[0], (double)res.Tr[1], (double)res.Tr[2],
                pixel[0], pixel[1], pixel[2]);
+    }
+
+    /* An adaptive method instead of a step count, set up as a renderer
+       would: rtol from the bench's advice (README, Tolerances: 1e-2 for
+       previews, 1e-3 for final frames: the relative error the image can
+       take, not a safety factor below it), the point light's equiangular
+       warp, and a budget per ray (max_evals: the most shadow rays this
+       pixel may cost; past it the call returns HRM_WARN_MAX_EVALS with its
+       best estimate and result.error says how far it may be off). */
+    {
+        static const struct { double rtol; long budget; } advice[] = {
+            {1e-2, 0}, {1e-3, 0}, {1e-3, 16}};
+        hrm_real origin[3] = {0, 0, 0}, dir[3] = {0, 0, 1}, light[3];
+        for (c = 0; c < 3; ++c) light[c] = (hrm_real)s.light_pos[c];
+        for (k = 0; k < sizeof advice / sizeof advice[0]; ++k) {
+            double err = 0, est = 0;
+            opt = hrm_default_options(HRM_NESTED_SIMPSON);
+            opt.rtol = (hrm_real)advice[k].rtol;
+            opt.max_evals = advice[k].budget; /* 0: the default, 100000 */
+            if (hrm_equiangular_warp(origin, dir, light, &opt.warp) != HRM_OK)
+                opt.warp.kind = HRM_WARP_NONE; /* light on the ray's line */
+            r.shadow_status = HRM_OK;
+            status = hrm_solve(&m, 0, (hrm_real)t_wall, &opt, &res);
+            if (status < 0) return 1;
+            for (c = 0; c < 3; ++c) {
+                double e = fabs((double)(res.L[c] - ref.L[c])) / (double)ref.L[c];
+                double q = (double)res.error[c] / (double)res.L[c];
+                if (e > err) err = e;
+                if (q > est) est = q;
+            }
+            printf("\nnested-simpson  rtol %.0e  budget %-6s evals %4ld  %s\n"
+                   "    error %.1e (estimated %.1e)\n", advice[k].rtol,
+                   advice[k].budget ? "16" : "none", res.stats.evals,
+                   hrm_status_string(status), err, est);
+        }
     }
     return 0;
 }
