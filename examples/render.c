@@ -258,22 +258,7 @@ static void shafts_Li(void *user, hrm_real t, hrm_real out[HRM_CHANNELS])
         out[c] = (hrm_real)(lit ? s->I[c] / (4 * PI * dist * dist) * exp(-s->st[c] * dist) : 0);
 }
 
-/* Cloud: sigma callbacks follow the density. */
-typedef struct shadow_ray {
-    const scene *s;
-    double o[3], d[3];
-} shadow_ray;
-
-static void cloud_sigma_t_shadow(void *user, hrm_real t, hrm_real out[HRM_CHANNELS])
-{
-    const shadow_ray *sr = (const shadow_ray *)user;
-    double p[3], rho;
-    int c;
-    for (c = 0; c < 3; ++c) p[c] = sr->o[c] + (double)t * sr->d[c];
-    rho = cloud_density(sr->s, p);
-    for (c = 0; c < 3; ++c) out[c] = (hrm_real)(rho * sr->s->kt[c]);
-}
-
+/* Cloud: sigma callbacks follow the density (camera and shadow rays). */
 static void cloud_sigma(void *user, hrm_real t, hrm_real out[HRM_CHANNELS], int which)
 {
     const ray *r = (const ray *)user;
@@ -286,13 +271,14 @@ static void cloud_sigma(void *user, hrm_real t, hrm_real out[HRM_CHANNELS], int 
 }
 static void cloud_sigma_a(void *u, hrm_real t, hrm_real o[HRM_CHANNELS]) { cloud_sigma(u, t, o, 0); }
 static void cloud_sigma_s(void *u, hrm_real t, hrm_real o[HRM_CHANNELS]) { cloud_sigma(u, t, o, 1); }
+static void cloud_sigma_t(void *u, hrm_real t, hrm_real o[HRM_CHANNELS]) { cloud_sigma(u, t, o, 2); }
 
 /* Transmittance from p towards unit direction d over [0, dist], through
    the part of the ray inside the cloud's sphere: one shadow ray. */
 static void cloud_shadow(ray *r, const double p[3], const double d[3], double dist, hrm_real Tr[3])
 {
     const scene *s = r->s;
-    shadow_ray sr;
+    ray sr;
     hrm_medium m;
     double ta, tb;
     hrm_status st;
@@ -302,12 +288,13 @@ static void cloud_shadow(ray *r, const double p[3], const double d[3], double di
     if (ta < 0) ta = 0;
     if (tb > dist) tb = dist;
     if (!(tb > ta)) return;
+    memset(&sr, 0, sizeof sr);
     sr.s = s;
     memcpy(sr.o, p, sizeof sr.o);
     memcpy(sr.d, d, sizeof sr.d);
     memset(&m, 0, sizeof m);
     m.user = &sr;
-    m.sigma_t = cloud_sigma_t_shadow;
+    m.sigma_t = cloud_sigma_t;
     st = hrm_transmittance(&m, (hrm_real)ta, (hrm_real)tb, &s->shadow, Tr, NULL);
     if (st != HRM_OK && r->shadow_status == HRM_OK) r->shadow_status = st;
 }
