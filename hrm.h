@@ -509,9 +509,12 @@
      piece; Monte Carlo draws its samples within each piece (stratified
      over them);
    - adaptive methods solve each piece to rtol, which bounds the sum;
-   - a sample at a breakpoint is taken 8 ulps inside the piece that owns
-     it, so each side of a jump is sampled on its own side (a breakpoint a
-     few ulps off the true edge still works);
+   - a sample at a breakpoint is taken 64 ulps inside the piece that owns
+     it, so each side of a jump is sampled on its own side (a breakpoint up
+     to about 60 ulps off the true edge still works: a renderer's shadow
+     test and its breakpoint, computed by two formulas, differed by 18
+     ulps, and with 8 ulps nested Simpson refined that sliver down to
+     h_min and warned HRM_WARN_H_MIN);
    - the transmittance layer's panels end at breakpoints and sample sigma_t
      on each side, so a medium whose coefficients jump there keeps its
      order; tau stays continuous across them.
@@ -1610,17 +1613,19 @@ static void hrm__tr_call(hrm__ctx *c, hrm_real s, hrm_real tr[HRM__CH])
     memcpy(c->tr_v, tr, sizeof c->tr_v);
 }
 
-/* A sample within 8 ulps of a breakpoint that ends the current piece (or
-   past it) is taken 8 ulps inside: each side of a jump is sampled on its
+/* A sample within 64 ulps of a breakpoint that ends the current piece (or
+   past it) is taken 64 ulps inside: each side of a jump is sampled on its
    own side, even where the warp puts the piece's end node an ulp or two
-   off the breakpoint, or the breakpoint is a few ulps off the true edge. */
+   off the breakpoint, or the breakpoint is some ulps off the true edge (a
+   host's shadow test and its breakpoint: 18 ulps apart in make render's
+   shafts). */
 static hrm_real hrm__inside(hrm_real s, int dir)
 {
     hrm_real tiny = HRM__TINY;
-    return s + (hrm_real)dir * (8 * HRM__EPS * HRM_FABS(s) + tiny);
+    return s + (hrm_real)dir * (64 * HRM__EPS * HRM_FABS(s) + tiny);
 }
 
-/* Never outside the ray: a jump within 8 ulps of t0 put a piece's inner
+/* Never outside the ray: a jump within 64 ulps of t0 put a piece's inner
    end, moved inside it, before t0. */
 static hrm_real hrm__in_ray(const hrm__ctx *c, hrm_real s)
 {
