@@ -687,14 +687,17 @@ typedef struct ladder {
 } ladder;
 
 /* Shadow rays per pixel (and seconds) to reach `target`: log-log
-   interpolation between the two rungs around the first crossing. -1:
+   interpolation between the two rungs around the first crossing; *at_most
+   1 where the first rung is already below it (its cost bounds it). -1:
    not reached on the ladder. */
-static double rays_to(const ladder *l, double target, double *seconds)
+static double rays_to(const ladder *l, double target, double *seconds, int *at_most)
 {
     int i;
+    *at_most = 0;
     for (i = 0; i < l->n; ++i) {
         if (l->r[i].rmse > target) continue;
         if (i == 0) {
+            *at_most = 1;
             *seconds = l->r[0].seconds;
             return l->r[0].rays;
         }
@@ -871,13 +874,15 @@ static int study(const scene *s, const config *cfg, int ncfg, const config *refc
 
     /* the equal-RMSE table */
     fprintf(md, "\nShadow rays per pixel (and seconds) to reach a relative RMSE, "
-                "interpolated between rungs; speedup over %s:\n\n", cfg[0].name);
+                "interpolated between rungs (<=: the ladder's first rung is already below "
+                "it); speedup over %s:\n\n", cfg[0].name);
     fprintf(md, "| configuration | rays @1e-2 | s @1e-2 | speedup | rays @1e-3 | s @1e-3 | speedup |\n");
     fprintf(md, "|---|---:|---:|---:|---:|---:|---:|\n");
     for (i = 0; i < ncfg; ++i) {
         fprintf(md, "| %s", cfg[i].name);
         for (k = 0; k < 2; ++k) {
-            double sec, rays = rays_to(&lad[i], target[k], &sec);
+            int at_most;
+            double sec, rays = rays_to(&lad[i], target[k], &sec, &at_most);
             if (i == 0) {
                 base_rays[k] = rays;
                 base_sec[k] = sec;
@@ -885,10 +890,10 @@ static int study(const scene *s, const config *cfg, int ncfg, const config *refc
             if (rays < 0)
                 fprintf(md, " | not reached | | ");
             else if (base_rays[k] > 0)
-                fprintf(md, " | %.1f | %.3f | %.1fx (time %.1fx)", rays, sec, base_rays[k] / rays,
-                        base_sec[k] / sec);
+                fprintf(md, " | %s%.1f | %.3f | %s%.1fx (time %.1fx)", at_most ? "<= " : "", rays,
+                        sec, at_most ? ">= " : "", base_rays[k] / rays, base_sec[k] / sec);
             else
-                fprintf(md, " | %.1f | %.3f | ", rays, sec);
+                fprintf(md, " | %s%.1f | %.3f | ", at_most ? "<= " : "", rays, sec);
         }
         fprintf(md, " |\n");
     }
