@@ -541,6 +541,128 @@ static void tr_counts(void)
     }
 }
 
+/* 8. A medium with kinks (sigma_t = k max(0, sin 3t): sigma continuous,
+   its slope jumping every pi/3, like a cloud's iso-surface), through
+   sigma callbacks and the decoupled layer, without a warp and under the
+   distance and equiangular warps, every adaptive method: albedo 0.6 and
+   Li = 1 give L = 0.6 (1 - exp(-tau(T))) in closed form.
+   - The layer's sigma evaluations stay bounded. Before its panels were
+     accepted against 1/64 of an optical depth as well as their own
+     increment, each kink drove them down to tau_tol of the ray and the
+     layer marched again from t0 past its panel table: 1.1e8 to 1.6e8
+     sigma evaluations per solve here at rtol 1e-5. Now at most about
+     115 000 (printed with HRM_TEST_VERBOSE=1); the bound is 250 000.
+   - With the kinks given as breakpoints (the manual's remedy for what a
+     method cannot see), HRM_OK is within 3 rtol. Without them it is not
+     always: nested Simpson under the distance warp aliases the humps (its
+     first nodes in u fall where sigma_s = 0: L 48% low with HRM_OK) and
+     Gauss-Kronrod's estimate misses the kinks' error by about 3x at rtol
+     1e-5 (9 rtol); both are open defects, checked here only for the
+     evaluation bound. */
+typedef struct tr_kinked {
+    double k;
+    long n_sigma;
+} tr_kinked;
+
+static double tr_kink_sigma(const tr_kinked *q, double t)
+{
+    double v = sin(3 * t);
+    return v > 0 ? q->k * v : 0;
+}
+
+/* int_0^T k max(0, sin 3t) dt: 2k/3 per period 2 pi / 3, and the part of
+   the last one. */
+static double tr_kink_tau(const tr_kinked *q, double T)
+{
+    double per = 2 * PI / 3, n = floor(T / per), r = T - n * per;
+    return q->k * (n * 2 / 3 + (r < PI / 3 ? (1 - cos(3 * r)) / 3 : 2.0 / 3));
+}
+
+static void tr_kink_sa(void *u, hrm_real t, hrm_real out[NCH])
+{
+    tr_kinked *q = (tr_kinked *)u;
+    int c;
+    q->n_sigma++;
+    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)(0.4 * tr_kink_sigma(q, (double)t));
+}
+
+static void tr_kink_ss(void *u, hrm_real t, hrm_real out[NCH])
+{
+    tr_kinked *q = (tr_kinked *)u;
+    int c;
+    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)(0.6 * tr_kink_sigma(q, (double)t));
+}
+
+static void tr_kink_li(void *u, hrm_real t, hrm_real out[NCH])
+{
+    int c;
+    (void)u;
+    (void)t;
+    for (c = 0; c < NCH; ++c) out[c] = 1;
+}
+
+static void tr_kinked_medium(void)
+{
+    static const double rtols[] = {1e-3, 1e-5};
+    static const double T = 20;
+    hrm_real kinks[HRM_MAX_BREAKS];
+    long worst = 0;
+    int mi, w, ir, c, nk = 0, ok_runs = 0;
+    while (nk < HRM_MAX_BREAKS && (nk + 1) * PI / 3 < T) {
+        kinks[nk] = (hrm_real)((nk + 1) * PI / 3);
+        ++nk;
+    }
+    for (mi = 0; mi < N_METHODS_ALL; ++mi)
+        for (w = 0; w < 3; ++w)
+            for (ir = 0; ir < 2; ++ir) {
+                hrm_method m = every_method[mi];
+                tr_kinked q = {0.3, 0};
+                hrm_medium md;
+                hrm_options o = hrm_default_options(m);
+                hrm_result r;
+                hrm_status st;
+                double want, tau;
+                if (!is_adaptive(m)) continue;
+                memset(&md, 0, sizeof md);
+                md.user = &q;
+                md.sigma_a = tr_kink_sa;
+                md.sigma_s = tr_kink_ss;
+                md.Li = tr_kink_li;
+                o.rtol = (hrm_real)(real_is_float() ? rtols[ir] * 100 : rtols[ir]);
+                if (w == 1) o.warp.kind = HRM_WARP_DISTANCE;
+                if (w == 2) {
+                    o.warp.kind = HRM_WARP_EQUIANGULAR;
+                    o.warp.delta = 7;
+                    o.warp.D = (hrm_real)0.5;
+                }
+                tau = tr_kink_tau(&q, T);
+                want = 0.6 * -expm1(-tau);
+                /* without breakpoints: the evaluation bound */
+                st = hrm_solve(&md, 0, (hrm_real)T, &o, &r);
+                CHECK(st >= 0, "kinked %s warp %d rtol %g: status %s", hrm_method_name(m), w,
+                      (double)o.rtol, hrm_status_string(st));
+                CHECK(q.n_sigma <= 250000, "kinked %s warp %d rtol %g: %ld sigma evaluations",
+                      hrm_method_name(m), w, (double)o.rtol, q.n_sigma);
+                if (q.n_sigma > worst) worst = q.n_sigma;
+                /* the kinks as breakpoints: HRM_OK within 3 rtol */
+                o.breaks = kinks;
+                o.nbreaks = nk;
+                st = hrm_solve(&md, 0, (hrm_real)T, &o, &r);
+                CHECK(st >= 0, "kinked %s warp %d rtol %g, breakpoints: status %s",
+                      hrm_method_name(m), w, (double)o.rtol, hrm_status_string(st));
+                for (c = 0; c < NCH && st == HRM_OK; ++c)
+                    CHECK_NEAR((double)r.L[c], want, 3 * (double)o.rtol * want + 64 * real_eps(),
+                               "kinked %s warp %d rtol %g, breakpoints: L within 3 rtol (HRM_OK)",
+                               hrm_method_name(m), w, (double)o.rtol);
+                if (st == HRM_OK) ++ok_runs;
+            }
+    /* the accuracy check ran: most solves with breakpoints answer HRM_OK */
+    CHECK(ok_runs >= 30, "kinked: %d of 42 solves with breakpoints returned HRM_OK", ok_runs);
+    if (verbose())
+        NOTE("kinked medium: at most %ld sigma evaluations per solve; %d of 42 with breakpoints "
+             "HRM_OK", worst, ok_runs);
+}
+
 void transmittance_tests(void)
 {
     RUN_GROUP(tr_constant_sigma);
@@ -552,4 +674,5 @@ void transmittance_tests(void)
     RUN_GROUP(tr_thick_callbacks);
     RUN_GROUP(tr_bad_options);
     RUN_GROUP(tr_counts);
+    RUN_GROUP(tr_kinked_medium);
 }
