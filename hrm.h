@@ -1537,11 +1537,11 @@ static long hrm__spent(const hrm__ctx *c)
    turns inf, then NaN (a step size from NaN never ended the loop). The
    range of a state is the largest real / 1024: sources and coefficients
    within R integrate to at most R (t1 - t0). */
-static void hrm__state_check(hrm__ctx *c, const hrm_real y[HRM__NY])
+static void hrm__state_check(hrm__ctx *c, const hrm_real *y, int n)
 {
     hrm_real lim = hrm__range(1);
     int i;
-    for (i = 0; i < HRM__NY; ++i)
+    for (i = 0; i < n; ++i)
         if (!(HRM_FABS(y[i]) <= lim) && c->status == HRM_OK) c->status = HRM_ERR_RANGE;
 }
 
@@ -1586,31 +1586,32 @@ static hrm_real hrm__abscissa(const hrm__ctx *c, hrm_real off)
 
 /* The transmittance callback Tr(t0, s), validated and counted: within
    [0, 1], and not rising along the ray against its previous call (beyond
-   the rounding of a closed form: 64 epsilons of max(1, tau) relative). */
-static void hrm__tr_call(hrm__ctx *c, hrm_real s, hrm_real tr[HRM__CH])
+   the rounding of a closed form: 64 epsilons of max(1, tau) relative).
+   Returns whether the callback was called (not after an error). */
+static int hrm__tr_call(hrm__ctx *c, hrm_real s, hrm_real tr[HRM__CH])
 {
     hrm_real tiny = HRM__TINY;
     int i, far = s > c->tr_s;
     if (c->status != HRM_OK) {
         hrm__fill(tr, HRM__CH, 1);
-        return;
+        return 0;
     }
     c->m->transmittance(c->m->user, c->t0, s, tr);
     hrm__check(c, tr, 2);
     c->stats.medium_evals++;
-    if (c->status != HRM_OK) return;
-    for (i = 0; i < HRM__CH && c->tr_have && s != c->tr_s; ++i) {
+    for (i = 0; i < HRM__CH && c->status == HRM_OK && c->tr_have && s != c->tr_s; ++i) {
         hrm_real near = far ? c->tr_v[i] : tr[i], beyond = far ? tr[i] : c->tr_v[i];
-        hrm_real slack = near > 0 ? 64 * HRM__EPS * near * (1 - HRM_LOG(near)) : 0;
-        if (beyond > near + slack + tiny) {
+        /* (the logarithm only where it rose at all) */
+        if (beyond > near + tiny &&
+            beyond > near + 64 * HRM__EPS * near * (1 - HRM_LOG(near)) + tiny) {
             c->status = HRM_ERR_CALLBACK_VALUE;
             hrm__fill(tr, HRM__CH, 1);
-            return;
         }
     }
     c->tr_have = 1;
     c->tr_s = s;
     memcpy(c->tr_v, tr, sizeof c->tr_v);
+    return 1;
 }
 
 /* A sample within 64 ulps of a breakpoint that ends the current piece (or
@@ -2332,8 +2333,8 @@ static hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_warp *w)
            the warp's dt/du = D (1 + ((t - delta) / D)^2) varies by less
            than sqrt(eps), an affine map, and D itself may be past the
            range: none. */
-        if (!inf && HRM_FABS(da) <= HRM_SQRT(HRM_SQRT(HRM__EPS)) * D &&
-            HRM_FABS(db) <= HRM_SQRT(HRM_SQRT(HRM__EPS)) * D) {
+        if (!inf && (HRM_FABS(da) > HRM_FABS(db) ? HRM_FABS(da) : HRM_FABS(db)) <=
+                        HRM_SQRT(HRM_SQRT(HRM__EPS)) * D) {
             c->warp = HRM_WARP_NONE;
             break;
         }
@@ -2624,10 +2625,8 @@ static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
                 }
             }
         } else if (c->closed) {
-            long before = c->stats.medium_evals;
-            hrm__tr_call(c, s, pt->tr);
+            if (hrm__tr_call(c, s, pt->tr)) medium = 0; /* counted there: one per abscissa */
             hrm__tau_of_tr(pt);
-            if (c->stats.medium_evals > before) medium = 0; /* one per abscissa */
         }
         c->stats.medium_evals += medium;
     }
@@ -3494,7 +3493,7 @@ static void hrm__ivp_fixed(hrm__ctx *c, const hrm__tableau *tb, int ab4, int N,
             }
         }
         c->stats.steps++;
-        hrm__state_check(c, y);
+        hrm__state_check(c, y, HRM__NY);
         if (c->status != HRM_OK) return;
     }
 }
@@ -3701,7 +3700,7 @@ static void hrm__ivp_adaptive(hrm__ctx *c, const hrm__tableau *tb, hrm_control c
         if (hrm__rk_step(c, tb, &start, &end, p, q, y, ynew, err, &ni,
                          control == HRM_CONTROL_PI ? both : 0) == 0)
             have = 0;
-        hrm__state_check(c, ynew);
+        hrm__state_check(c, ynew, HRM__NY);
         if (c->status != HRM_OK) return;
         if (first) {
             /* The first attempt's increment: a part of the total, not
@@ -5071,10 +5070,8 @@ static void hrm__solve_pieces(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM_
         }
         /* each piece within the range, their sum too (the RTE form's
            pieces multiply) */
-        hrm__state_check(c, y);
-        for (i = 0; i < HRM__CH; ++i)
-            if (!(HRM_FABS(acc[i]) <= hrm__range(1)) && c->status == HRM_OK)
-                c->status = HRM_ERR_RANGE;
+        hrm__state_check(c, y, HRM__NY);
+        hrm__state_check(c, acc, HRM__CH);
     }
     memcpy(y, acc, sizeof acc);
     memcpy(c->err_acc, err, sizeof err);

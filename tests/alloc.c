@@ -106,15 +106,14 @@ static hrm_medium al_medium(const mt_scene *s, int kind)
 /* One case: which options and scene. */
 typedef struct al_case {
     int method, form, warp, expo, medium, breaks;
-    int variant;             /* AL_V_*: the other options */
+    int variant;             /* MT_V_* or AL_V_*: the other options */
     int shadow;
     double t1;
 } al_case;
 
 enum {
-    AL_V_NONE, AL_V_JITTER, AL_V_STRATIFIED, AL_V_K7, AL_V_GK_LOCAL, AL_V_MUNOZ, AL_V_GONTERMAN,
-    AL_V_COUPLED, AL_V_NO_JUMPS, AL_V_FIND_JUMPS, AL_V_PER_LENGTH, AL_V_SLAB, AL_V_BUDGET, AL_V_TIGHT,
-    AL_V_NULL_OPTIONS, AL_V_COUNT
+    AL_V_PER_LENGTH = MT_V_SHARED, AL_V_SLAB, AL_V_BUDGET, AL_V_TIGHT, AL_V_NULL_OPTIONS,
+    AL_V_COUNT
 };
 
 typedef struct al_tally {
@@ -159,16 +158,8 @@ static void al_run(const al_case *k, const mt_scene *base, al_tally *t, hrm_resu
         o.breaks = brk;
         o.nbreaks = 3;
     }
+    mt_option(&o, k->variant);
     switch (k->variant) {
-    case AL_V_JITTER: o.jitter = 1; break;
-    case AL_V_STRATIFIED: o.stratified = 1; break;
-    case AL_V_K7: o.gk_rule = HRM_GK_K7; break;
-    case AL_V_GK_LOCAL: o.gk_mode = HRM_GK_LOCAL; break;
-    case AL_V_MUNOZ: o.control = HRM_CONTROL_MUNOZ; break;
-    case AL_V_GONTERMAN: o.control = HRM_CONTROL_GONTERMAN; break;
-    case AL_V_COUPLED: o.tau_mode = HRM_TAU_COUPLED; break;
-    case AL_V_NO_JUMPS: o.find_jumps = -1; break;
-    case AL_V_FIND_JUMPS: o.find_jumps = 1; break;
     case AL_V_PER_LENGTH: m.flags |= HRM_EMISSION_PER_LENGTH; break;
     case AL_V_BUDGET: o.max_evals = 40; o.rtol = (hrm_real)1e-9; break;
     case AL_V_TIGHT: o.rtol = (hrm_real)1e-20; o.atol = (hrm_real)1e-30; o.tau_tol = (hrm_real)1e-12; break;

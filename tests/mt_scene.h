@@ -96,6 +96,30 @@ static void mt_li(void *u, hrm_real t, hrm_real out[HRM_CHANNELS])
 }
 
 /* A user warp: u = t / (t + 1), t in [0, inf). */
+/* The options a test table leaves at zero, one at a time: those threads.c
+   and alloc.c share (each numbers its own from MT_V_SHARED on). */
+enum {
+    MT_V_NONE, MT_V_JITTER, MT_V_STRATIFIED, MT_V_K7, MT_V_GK_LOCAL, MT_V_MUNOZ, MT_V_GONTERMAN,
+    MT_V_COUPLED, MT_V_FIND_JUMPS, MT_V_NO_JUMPS, MT_V_SHARED
+};
+
+/* Sets the shared option v (MT_V_*); others are the caller's. */
+static void mt_option(hrm_options *o, int v)
+{
+    switch (v) {
+    case MT_V_JITTER: o->jitter = 1; break;
+    case MT_V_STRATIFIED: o->stratified = 1; break;
+    case MT_V_K7: o->gk_rule = HRM_GK_K7; break;
+    case MT_V_GK_LOCAL: o->gk_mode = HRM_GK_LOCAL; break;
+    case MT_V_MUNOZ: o->control = HRM_CONTROL_MUNOZ; break;
+    case MT_V_GONTERMAN: o->control = HRM_CONTROL_GONTERMAN; break;
+    case MT_V_COUPLED: o->tau_mode = HRM_TAU_COUPLED; break;
+    case MT_V_FIND_JUMPS: o->find_jumps = 1; break;
+    case MT_V_NO_JUMPS: o->find_jumps = -1; break;
+    default: break;
+    }
+}
+
 static hrm_real mt_t_of_u(void *u, hrm_real x) { (void)u; return x / (1 - x); }
 static hrm_real mt_dt_du(void *u, hrm_real x) { (void)u; return 1 / ((1 - x) * (1 - x)); }
 static hrm_real mt_u_of_t(void *u, hrm_real t) { (void)u; return isinf(t) ? (hrm_real)1 : t / (t + 1); }

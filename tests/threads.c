@@ -59,13 +59,12 @@ typedef struct th_case {
     hrm_method method;
     hrm_form form;
     int warp, expo, callbacks, breaks, tr_only, shadow;
-    int variant; /* TH_V_*: an option the table leaves at zero */
+    int variant; /* MT_V_* or TH_V_*: an option the table leaves at zero */
 } th_case;
 
 /* The other options, one at a time. */
 enum {
-    TH_V_NONE, TH_V_JITTER, TH_V_STRATIFIED, TH_V_K7, TH_V_GK_LOCAL, TH_V_MUNOZ, TH_V_GONTERMAN, TH_V_COUPLED,
-    TH_V_FIND_JUMPS, TH_V_NO_JUMPS, TH_V_USER_WARP, TH_V_SIGMA_T, TH_V_TRANSMITTANCE, TH_V_SLAB, TH_V_INFINITE,
+    TH_V_USER_WARP = MT_V_SHARED, TH_V_SIGMA_T, TH_V_TRANSMITTANCE, TH_V_SLAB, TH_V_INFINITE,
     TH_V_COUNT
 };
 
@@ -131,16 +130,8 @@ static void th_run(const th_case *k, const mt_scene *base, th_out *out)
         o.breaks = brk;
         o.nbreaks = 2;
     }
+    mt_option(&o, k->variant);
     switch (k->variant) {
-    case TH_V_JITTER: o.jitter = 1; break;
-    case TH_V_STRATIFIED: o.stratified = 1; break;
-    case TH_V_K7: o.gk_rule = HRM_GK_K7; break;
-    case TH_V_GK_LOCAL: o.gk_mode = HRM_GK_LOCAL; break;
-    case TH_V_MUNOZ: o.control = HRM_CONTROL_MUNOZ; break;
-    case TH_V_GONTERMAN: o.control = HRM_CONTROL_GONTERMAN; break;
-    case TH_V_COUPLED: o.tau_mode = HRM_TAU_COUPLED; break;
-    case TH_V_FIND_JUMPS: o.find_jumps = 1; break;
-    case TH_V_NO_JUMPS: o.find_jumps = -1; break;
     case TH_V_USER_WARP:
         o.warp.kind = HRM_WARP_USER;
         o.warp.t_of_u = mt_t_of_u;
@@ -197,7 +188,7 @@ static int th_cases(const mt_scene *s, th_case *k, int max)
             for (v = 1; v < TH_V_COUNT && n < max; ++v) {
                 th_out o;
                 th_case c;
-                if (f == HRM_FORM_RTE && v != TH_V_MUNOZ && v != TH_V_GONTERMAN) continue;
+                if (f == HRM_FORM_RTE && v != MT_V_MUNOZ && v != MT_V_GONTERMAN) continue;
                 memset(&c, 0, sizeof c);
                 c.method = (hrm_method)mi;
                 c.form = (hrm_form)f;
