@@ -291,7 +291,7 @@ static void tr_decoupled_vs_exact(void)
             hrm_options o = tr_options(m, ns[k], rtols[k], 1, &p);
             hrm_medium ms = tr_make(&p, 0, 0), mx = tr_make(&p, 0, 1);
             hrm_result rd, rx, rc;
-            double ed = 0, ex = 0, ec = 0;
+            double ed = 0, ex = 0, ec = 0, bound;
             CHECK(hrm_solve(&mx, 0, 10, &o, &rx) >= 0, "%s: exact-Tr solve", hrm_method_name(m));
             CHECK(hrm_solve(&ms, 0, 10, &o, &rd) >= 0, "%s: decoupled solve", hrm_method_name(m));
             o.tau_mode = HRM_TAU_COUPLED;
@@ -305,8 +305,24 @@ static void tr_decoupled_vs_exact(void)
             }
             /* adaptive methods: the two solves take different steps (Tr
                differs, so do the estimates), and tau adds at most its
-               default tau_tol = rtol/32 (TRANSMITTANCE) */
-            CHECK_NEAR(ed, 0, 2 * ex + floor_ + (tr_adaptive(m) ? rtols[k] / 32 : 0),
+               default tau_tol = rtol/32 (TRANSMITTANCE). Only the
+               decoupled solve checks its nodes against the layer's tau
+               (the medium check, ADAPTIVE ERROR ESTIMATES): where that
+               changes which interval is split first, the two end on
+               different sets and the exact-Tr solve's error (0.12 rtol:
+               nested Simpson, rtol 1e-2, one channel) says nothing of the
+               other's; that one is then held to the manual's promise,
+               3 rtol, with its own estimate within 2x of its error */
+            bound = 2 * ex + floor_ + (tr_adaptive(m) ? rtols[k] / 32 : 0);
+            if (tr_adaptive(m) && rd.stats.evals != rx.stats.evals && bound < 3 * rtols[k]) {
+                double est = 0;
+                for (c = 0; c < NCH; ++c)
+                    if ((double)rd.error[c] / ref[c] > est) est = (double)rd.error[c] / ref[c];
+                CHECK(est >= ed / 2, "%s rtol %g: a different path than the exact-Tr solve's, its estimate %.2g of an error %.2g",
+                      hrm_method_name(m), rtols[k], est, ed);
+                bound = 3 * rtols[k];
+            }
+            CHECK_NEAR(ed, 0, bound,
                        "%s %s %g: decoupled tau within 2x of the exact-Tr solve's error",
                        hrm_method_name(m), tr_adaptive(m) ? "rtol" : "N",
                        tr_adaptive(m) ? rtols[k] : (double)ns[k]);
@@ -541,41 +557,48 @@ static void tr_counts(void)
     }
 }
 
-/* 8. A medium with kinks (sigma_t = k max(0, sin 3t): sigma continuous,
-   its slope jumping every pi/3, like a cloud's iso-surface), through
-   sigma callbacks and the decoupled layer, without a warp and under the
-   distance and equiangular warps, every adaptive method: albedo 0.6 and
-   Li = 1 give L = 0.6 (1 - exp(-tau(T))) in closed form.
+/* 8. A medium with kinks (sigma_t = k max(0, sin f t): sigma continuous,
+   its slope jumping every pi/f, like a cloud's iso-surface; half the ray
+   empty), through sigma callbacks and the decoupled layer, without a warp
+   and under the distance and equiangular warps, every adaptive method,
+   k 0.3 and 3 (tau(20) 4 and 40), f 1, 3 and 10: albedo 0.6 and Li = 1
+   give L = 0.6 (1 - exp(-tau(T))) in closed form.
+   - Without breakpoints, HRM_OK is within 3 rtol. Before the medium check
+     (TOLERANCES) 48 of these 252 solves and their 126 at rtol 1e-2 were
+     not: nested Simpson, whose first nodes fell where sigma = 0, returned
+     L = 0 with HRM_OK (1e5 rtol at f = 10), the pairs under the
+     equiangular warp missed by up to 3.6e4 rtol, Gauss-Kronrod by 3-13
+     rtol at 1e-5.
    - The layer's sigma evaluations stay bounded. Before its panels were
      accepted against 1/64 of an optical depth as well as their own
      increment, each kink drove them down to tau_tol of the ray and the
      layer marched again from t0 past its panel table: 1.1e8 to 1.6e8
-     sigma evaluations per solve here at rtol 1e-5. Now at most about
-     115 000 (printed with HRM_TEST_VERBOSE=1); the bound is 250 000.
-   - With the kinks given as breakpoints (the manual's remedy for what a
-     method cannot see), HRM_OK is within 3 rtol. Without them it is not
-     always: nested Simpson under the distance warp aliases the humps (its
-     first nodes in u fall where sigma_s = 0: L 48% low with HRM_OK) and
-     Gauss-Kronrod's estimate misses the kinks' error by about 3x at rtol
-     1e-5 (9 rtol); both are open defects, checked here only for the
-     evaluation bound. */
+     sigma evaluations per solve at k 0.3, f 3, rtol 1e-5. The bound is
+     250 000 (the most measured is printed with HRM_TEST_VERBOSE=1). At
+     f = 10 (63 kinks) it is 2.5e6, 1.26e6 measured (Gauss-Kronrod, rtol
+     1e-5, k 0.3): each kink takes a dozen panels a side, past the
+     table's HRM_TAU_PANELS, and the worst-first rules query behind its
+     window, where the layer marches again from t0 (an open cost: a
+     checkpoint per window would bound a query's march).
+   - With the kinks given as breakpoints (k 0.3, f 3: 19 of them), HRM_OK
+     is within 3 rtol too, and most solves return it. */
 typedef struct tr_kinked {
-    double k;
+    double k, f;
     long n_sigma;
 } tr_kinked;
 
 static double tr_kink_sigma(const tr_kinked *q, double t)
 {
-    double v = sin(3 * t);
+    double v = sin(q->f * t);
     return v > 0 ? q->k * v : 0;
 }
 
-/* int_0^T k max(0, sin 3t) dt: 2k/3 per period 2 pi / 3, and the part of
+/* int_0^T k max(0, sin f t) dt: 2k/f per period 2 pi / f, and the part of
    the last one. */
 static double tr_kink_tau(const tr_kinked *q, double T)
 {
-    double per = 2 * PI / 3, n = floor(T / per), r = T - n * per;
-    return q->k * (n * 2 / 3 + (r < PI / 3 ? (1 - cos(3 * r)) / 3 : 2.0 / 3));
+    double per = 2 * PI / q->f, n = floor(T / per), r = T - n * per;
+    return q->k * (n * 2 / q->f + (r < PI / q->f ? (1 - cos(q->f * r)) / q->f : 2 / q->f));
 }
 
 static void tr_kink_sa(void *u, hrm_real t, hrm_real out[NCH])
@@ -601,66 +624,86 @@ static void tr_kink_li(void *u, hrm_real t, hrm_real out[NCH])
     for (c = 0; c < NCH; ++c) out[c] = 1;
 }
 
+/* L of the kinked medium is within 3 rtol of want where st is HRM_OK */
+static void tr_kink_check(hrm_status st, const hrm_result *r, const hrm_options *o, double want,
+                          const char *what, int w, const tr_kinked *q)
+{
+    int c;
+    for (c = 0; c < NCH && st == HRM_OK; ++c)
+        CHECK_NEAR((double)r->L[c], want, 3 * (double)o->rtol * want + 64 * real_eps(),
+                   "kinked k %g f %g, %s warp %d rtol %g%s: L within 3 rtol (HRM_OK)", q->k,
+                   q->f, hrm_method_name(o->method), w, (double)o->rtol, what);
+}
+
 static void tr_kinked_medium(void)
 {
-    static const double rtols[] = {1e-3, 1e-5};
+    static const double rtols[] = {1e-3, 1e-5}, ks[] = {0.3, 3}, fs[] = {1, 3, 10};
     static const double T = 20;
     hrm_real kinks[HRM_MAX_BREAKS];
-    long worst = 0;
-    int mi, w, ir, c, nk = 0, ok_runs = 0;
+    long worst = 0, evals = 0;
+    int mi, w, ir, ik, jf, nk = 0, ok_runs = 0, ok_free = 0, runs = 0;
     while (nk < HRM_MAX_BREAKS && (nk + 1) * PI / 3 < T) {
         kinks[nk] = (hrm_real)((nk + 1) * PI / 3);
         ++nk;
     }
     for (mi = 0; mi < N_METHODS_ALL; ++mi)
         for (w = 0; w < 3; ++w)
-            for (ir = 0; ir < 2; ++ir) {
-                hrm_method m = every_method[mi];
-                tr_kinked q = {0.3, 0};
-                hrm_medium md;
-                hrm_options o = hrm_default_options(m);
-                hrm_result r;
-                hrm_status st;
-                double want, tau;
-                if (!is_adaptive(m)) continue;
-                memset(&md, 0, sizeof md);
-                md.user = &q;
-                md.sigma_a = tr_kink_sa;
-                md.sigma_s = tr_kink_ss;
-                md.Li = tr_kink_li;
-                o.rtol = (hrm_real)(real_is_float() ? rtols[ir] * 100 : rtols[ir]);
-                if (w == 1) o.warp.kind = HRM_WARP_DISTANCE;
-                if (w == 2) {
-                    o.warp.kind = HRM_WARP_EQUIANGULAR;
-                    o.warp.delta = 7;
-                    o.warp.D = (hrm_real)0.5;
-                }
-                tau = tr_kink_tau(&q, T);
-                want = 0.6 * -expm1(-tau);
-                /* without breakpoints: the evaluation bound */
-                st = hrm_solve(&md, 0, (hrm_real)T, &o, &r);
-                CHECK(st >= 0, "kinked %s warp %d rtol %g: status %s", hrm_method_name(m), w,
-                      (double)o.rtol, hrm_status_string(st));
-                CHECK(q.n_sigma <= 250000, "kinked %s warp %d rtol %g: %ld sigma evaluations",
-                      hrm_method_name(m), w, (double)o.rtol, q.n_sigma);
-                if (q.n_sigma > worst) worst = q.n_sigma;
-                /* the kinks as breakpoints: HRM_OK within 3 rtol */
-                o.breaks = kinks;
-                o.nbreaks = nk;
-                st = hrm_solve(&md, 0, (hrm_real)T, &o, &r);
-                CHECK(st >= 0, "kinked %s warp %d rtol %g, breakpoints: status %s",
-                      hrm_method_name(m), w, (double)o.rtol, hrm_status_string(st));
-                for (c = 0; c < NCH && st == HRM_OK; ++c)
-                    CHECK_NEAR((double)r.L[c], want, 3 * (double)o.rtol * want + 64 * real_eps(),
-                               "kinked %s warp %d rtol %g, breakpoints: L within 3 rtol (HRM_OK)",
-                               hrm_method_name(m), w, (double)o.rtol);
-                if (st == HRM_OK) ++ok_runs;
-            }
-    /* the accuracy check ran: most solves with breakpoints answer HRM_OK */
+            for (ir = 0; ir < 2; ++ir)
+                for (ik = 0; ik < 2; ++ik)
+                    for (jf = 0; jf < 3; ++jf) {
+                        hrm_method m = every_method[mi];
+                        tr_kinked q;
+                        hrm_medium md;
+                        hrm_options o = hrm_default_options(m);
+                        hrm_result r;
+                        hrm_status st;
+                        double want;
+                        if (!is_adaptive(m)) continue;
+                        q.k = ks[ik];
+                        q.f = fs[jf];
+                        q.n_sigma = 0;
+                        memset(&md, 0, sizeof md);
+                        md.user = &q;
+                        md.sigma_a = tr_kink_sa;
+                        md.sigma_s = tr_kink_ss;
+                        md.Li = tr_kink_li;
+                        o.rtol = (hrm_real)(real_is_float() ? rtols[ir] * 100 : rtols[ir]);
+                        if (w == 1) o.warp.kind = HRM_WARP_DISTANCE;
+                        if (w == 2) {
+                            o.warp.kind = HRM_WARP_EQUIANGULAR;
+                            o.warp.delta = 7;
+                            o.warp.D = (hrm_real)0.5;
+                        }
+                        want = 0.6 * -expm1(-tr_kink_tau(&q, T));
+                        st = hrm_solve(&md, 0, (hrm_real)T, &o, &r);
+                        CHECK(st >= 0, "kinked k %g f %g, %s warp %d rtol %g: status %s", q.k, q.f,
+                              hrm_method_name(m), w, (double)o.rtol, hrm_status_string(st));
+                        CHECK(q.n_sigma <= (q.f < 5 ? 250000 : 2500000),
+                              "kinked k %g f %g, %s warp %d rtol %g: %ld sigma evaluations",
+                              q.k, q.f, hrm_method_name(m), w, (double)o.rtol, q.n_sigma);
+                        tr_kink_check(st, &r, &o, want, "", w, &q);
+                        if (q.n_sigma > worst) worst = q.n_sigma;
+                        evals += r.stats.evals;
+                        ok_free += st == HRM_OK;
+                        ++runs;
+                        if (!(ik == 0 && jf == 1)) continue;
+                        /* the kinks as breakpoints */
+                        o.breaks = kinks;
+                        o.nbreaks = nk;
+                        st = hrm_solve(&md, 0, (hrm_real)T, &o, &r);
+                        CHECK(st >= 0, "kinked %s warp %d rtol %g, breakpoints: status %s",
+                              hrm_method_name(m), w, (double)o.rtol, hrm_status_string(st));
+                        tr_kink_check(st, &r, &o, want, ", breakpoints", w, &q);
+                        if (st == HRM_OK) ++ok_runs;
+                    }
+    /* the accuracy checks ran: most solves answer HRM_OK */
     CHECK(ok_runs >= 30, "kinked: %d of 42 solves with breakpoints returned HRM_OK", ok_runs);
+    CHECK(ok_free >= runs / 2, "kinked: %d of %d solves without breakpoints returned HRM_OK",
+          ok_free, runs);
     if (verbose())
-        NOTE("kinked medium: at most %ld sigma evaluations per solve; %d of 42 with breakpoints "
-             "HRM_OK", worst, ok_runs);
+        NOTE("kinked medium: at most %ld sigma evaluations per solve; without breakpoints %d of "
+             "%d HRM_OK (%ld Li evaluations in all), with them %d of 42",
+             worst, ok_free, runs, evals, ok_runs);
 }
 
 void transmittance_tests(void)
