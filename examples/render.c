@@ -8,8 +8,8 @@
              Shadow rays are analytic (sphere tests and exp(-sigma_t r)).
      cloud   a procedural cloud, optically thick in its core, lit by the
              sun (directional) and a point light; shadow rays through
-             hrm_transmittance (Simpson, 8 panels, fixed: the same Li for
-             every configuration and the reference).
+             hrm_transmittance (Simpson, 4 panels, tau coupled, fixed:
+             the same Li for every configuration and the reference).
 
    Per scene: a reference (nested Simpson at rtol 1e-6, checked against
    rtol 1e-7), then every configuration over a ladder of budgets (N for
