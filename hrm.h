@@ -345,7 +345,9 @@
      steps that is <= atol + 2*rtol*|L|. |L| is the larger of the running
      sum and half of a coarse estimate of the total taken from the first
      samples (no extra evaluation), so an integral that starts at zero is
-     not asked for a relative accuracy on nothing. In the optical-depth
+     not asked for a relative accuracy on nothing; where the first
+     samples saw no source (a blob further on), the pairs take it from
+     the first step that does, its increment extrapolated over the ray. In the optical-depth
      form the local errors add without amplification, which is what makes a
      sum of local shares a global bound.
    - tau (coupled mode) is controlled the same way, its error weighted by
@@ -2657,8 +2659,13 @@ static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
                farther from the origin than it is long): the integrand is
                sampled as a staircase in t, which no estimate sees (the
                equiangular map of a light 1e-12 from a ray 1e-6 long at
-               1e9: L 64% low with HRM_OK). hrm__finish warns. */
-            if (k < HRM__MEMO && c->memo[k].p != p && c->warp != HRM_WARP_NONE && HRM_FABS(c->t0) > c->T)
+               1e9: L 64% low with HRM_OK). hrm__finish warns. (Not one
+               node computed twice, its p a few ulps apart: a pair's node
+               reached by two sums, on a ray clipped to a cloud's bounds
+               under a warp, warned for nothing.) */
+            if (k < HRM__MEMO && c->warp != HRM_WARP_NONE && HRM_FABS(c->t0) > c->T &&
+                HRM_FABS(c->memo[k].p - p) >
+                    8 * HRM__EPS * (HRM_FABS(p) > HRM_FABS(c->memo[k].p) ? HRM_FABS(p) : HRM_FABS(c->memo[k].p)))
                 c->unresolved = 1;
             /* the callbacks' values at s again; Tr from the node's own
                offset (it resolves t0 + off finer than s does) */
@@ -3865,6 +3872,20 @@ static void hrm__ivp_adaptive(hrm__ctx *c, const hrm__tableau *tb, hrm_control c
             if (control != HRM_CONTROL_MUNOZ && control != HRM_CONTROL_GONTERMAN)
                 hrm__set_scale(c, part);
             first = 0;
+        } else if (control == HRM_CONTROL_PI && !c->scale_fixed) {
+            /* A pilot that saw nothing (the source 0 over the first
+               attempt: a cloud's blob further on) left no scale, and a
+               step at the edge of what follows, where the source rises
+               from 0 (a kink of sigma), misses by a fixed fraction of its
+               own increment however small it is: it would descend to
+               h_min (Dormand-Prince: 236 evaluations and
+               HRM_WARN_ROUNDOFF on a blob 0.09 wide). The first attempt
+               that sees something sets the scale instead, its increment
+               extrapolated over the ray (too large a scale is caught by
+               the verification: VERIFIED). */
+            for (n = 0; n < HRM__NY; ++n)
+                if (c->scale[n] == 0 && ynew[n] != y[n])
+                    c->scale[n] = HRM_FABS(ynew[n] - y[n]) * (P / hs) / 2;
         }
         if (control == HRM_CONTROL_PI) hrm__pair_calibrate(c, tb, hs, y, ynew, both);
         ratio = hrm__ratio(c, control, p, q, y, ynew, control == HRM_CONTROL_PI ? both : err);

@@ -716,7 +716,8 @@ static void tr_kinked_medium(void)
    saw, every adaptive method returned Tr = 1 and L = 0 with HRM_OK (the
    truth: Tr 0.70; a cloud rendered with the defaults stalled at image
    RMSE 1e-2). Every adaptive method, no warp, distance and equiangular
-   warps: HRM_OK within 3 rtol; hrm_transmittance within 3 tau_tol. */
+   warps: HRM_OK within 3 rtol, and nearly always returned; hrm_transmittance
+   within 3 tau_tol. */
 typedef struct tr_blob {
     double c, w, k;
 } tr_blob;
@@ -791,7 +792,12 @@ static void tr_clipped_blob(void)
                 }
                 ok_runs += st == HRM_OK;
             }
-    CHECK(ok_runs >= 21, "clipped blob: %d of 42 solves returned HRM_OK", ok_runs);
+    /* all but two return HRM_OK (42 measured): before the pairs set their
+       scale from the first attempt that saw the blob, their steps at its
+       edges (where sigma rises from 0) descended to t's resolution and 19
+       of the 42 returned HRM_WARN_ROUNDOFF or HRM_WARN_H_MIN, in up to
+       1000 evaluations */
+    CHECK(ok_runs >= 40, "clipped blob: %d of 42 solves returned HRM_OK", ok_runs);
     for (ir = 0; ir < 2; ++ir) {
         /* the transmittance alone (a shadow ray through the blob) */
         hrm_medium md;
