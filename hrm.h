@@ -566,9 +566,14 @@
    integrated at each piece's order by every method (measured on the
    bench's slab scene: 1e-6 in 27 to 51 samples, as with its faces given;
    before the scan, global Gauss-Kronrod's 17 samples all fell outside
-   the slab and returned 60% low with HRM_OK). Where neighbours differ
-   and no jump is found (a steep smooth change, a kink: a cloud's
-   iso-surface), the larger sample is given to the transmittance layer,
+   the slab and returned 60% low with HRM_OK). A medium's edge, sigma_t
+   0 on one side, is located the same way even where sigma_t rises from 0
+   continuously (a kink: a cloud's iso-surface), so that every piece is
+   smooth (a blob 0.09 wide on a clipped ray: Gauss-Kronrod 17 samples
+   to 1e-12, nested Simpson 17-33 and Dormand-Prince 21-36 to 1e-5, from
+   80-156, 23-50 and 82-171, and a fifth of the medium calls). Where
+   neighbours differ and no jump is found (a steep smooth change),
+   the larger sample is given to the transmittance layer,
    whose panels must then reproduce it: a blob a few scan points wide is
    not lost between the nine samples of the layer's first panel (which
    spans the whole ray where sigma_t is 0 at t0). Before, a ray clipped
@@ -5408,7 +5413,7 @@ static int hrm__locate_sigma_jump(hrm__ctx *c, hrm_real a, hrm_real b, hrm_real 
                                   hrm_real *off)
 {
     hrm_real st[HRM__CH];
-    int it, smooth = 0;
+    int it, smooth = 0, edge = (fa == 0) != (fb == 0);
     for (it = 0; it < 80 && c->status == HRM_OK && smooth < 3; ++it) {
         hrm_real m = a / 2 + b / 2, fm, dl, dr;
         if (!(m > a && m < b)) break;
@@ -5416,6 +5421,19 @@ static int hrm__locate_sigma_jump(hrm__ctx *c, hrm_real a, hrm_real b, hrm_real 
         fm = hrm__sigma_sum(c, m, 0, st);
         dl = HRM_FABS(fm - fa);
         dr = HRM_FABS(fb - fm);
+        if (edge) {
+            /* the medium's edge (sigma_t 0 on one side): a kink at least,
+               where it rises from 0 (a cloud's iso-surface), located as a
+               jump is, the half where 0 meets sigma_t > 0 kept */
+            if ((fm == 0) == (fa == 0)) {
+                a = m;
+                fa = fm;
+            } else {
+                b = m;
+                fb = fm;
+            }
+            continue;
+        }
         smooth = (dl > dr ? dl : dr) < HRM__R(0.75) * (dl + dr) ? smooth + 1 : 0;
         if (dl > dr) {
             b = m;
@@ -5436,12 +5454,13 @@ static int hrm__locate_sigma_jump(hrm__ctx *c, hrm_real a, hrm_real b, hrm_real 
    where neighbours differ by a factor 2 or more the jump between them is
    located and made a breakpoint before the method runs, so that a slab or
    a bounding box is integrated at each piece's order by every method and
-   every form. Where no jump is found between them (a steep but smooth
-   change, a kink: a cloud's iso-surface), the transmittance layer learns
-   the larger of the two samples, which its panels must then reproduce: a
-   blob a few scan points wide is not lost between the samples of its
-   first panel (9 over the whole ray where sigma_t is 0 at t0). What lies
-   between two neighbours unseen stays unseen. */
+   every form; so is a medium's edge (sigma_t 0 on one side), kink or
+   jump. Where no jump is found between them (a steep but smooth change),
+   the transmittance layer learns the larger of the two samples, which its
+   panels must then reproduce: a feature a few scan points wide is not
+   lost between the samples of its first panel (9 over the whole ray where
+   sigma_t is 0 at t0). What lies between two neighbours unseen stays
+   unseen. */
 #define HRM__SCAN 32
 static void hrm__scan_medium(hrm__ctx *c)
 {
