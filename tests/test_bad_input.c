@@ -250,7 +250,7 @@ enum {
     MU_WARP_KIND, MU_SIGMA_REF, MU_EQ_D, MU_EQ_DELTA, MU_EQ_ON_RAY, MU_UWARP_NULL,
     MU_UWARP_DECREASING, MU_WARP_EMPTY_RAY, MU_WARP_FOLD,
     /* the medium */
-    MU_CONST_SA, MU_CONST_SS, MU_FLAGS,
+    MU_CONST_SA, MU_CONST_SS, MU_FLAGS, MU_FEATURE,
     /* callbacks' values */
     MU_POISON, MU_TR_RISING,
     /* hrm_equiangular_warp: origin (0,0,0), dir (1,0,0), light (3,1,0) */
@@ -466,6 +466,12 @@ static const bi_row bi_rows[] = {
     BI_OK("constant sigma_a denormal", MU_CONST_SA, X_DENORM, 0, V_HOM, S_ALL, HRM_OK, HRM_OK),
     BI_ARG("medium flags: an unknown bit", MU_FLAGS, X_LIT, 0, S_ALL,
            HRM_ERR_BAD_MEDIUM),
+    BI_ARG("medium feature negative", MU_FEATURE, X_LIT, -0.1, S_ALL, HRM_ERR_BAD_MEDIUM),
+    BI_ARG("medium feature NaN", MU_FEATURE, X_NAN, 0, S_ALL, HRM_ERR_BAD_MEDIUM),
+    BI_ARG("medium feature +inf", MU_FEATURE, X_PINF, 0, S_ALL, HRM_ERR_BAD_MEDIUM),
+    BI_OK("medium feature denormal (the scan capped)", MU_FEATURE, X_DENORM, 0, V_CB, S_ALL, HRM_OK,
+          HRM_OK),
+    BI_OK("medium feature huge (the default scan)", MU_FEATURE, X_MAX, 0, V_CB, S_ALL, HRM_OK, HRM_OK),
 
     /* the callbacks' values: at their second call (the first for the
        transmittance and u_of_t), in the last channel */
@@ -793,6 +799,7 @@ static void bi_mutate(bi_setup *s, const bi_row *row)
     case MU_CONST_SA: s->m.const_sigma_a[NCH - 1] = xr; break;
     case MU_CONST_SS: s->m.const_sigma_s[NCH - 1] = xr; break;
     case MU_FLAGS: s->m.flags |= 0x100u; break;
+    case MU_FEATURE: s->m.feature = xr; break;
     case MU_POISON:
         s->sc.target = row->cb;
         s->sc.at_call = row->at_call;
