@@ -2096,6 +2096,14 @@ static void hrm__tau_from(hrm__tau *L, int k)
     hrm__forget(L);
 }
 
+/* The last checkpoint that starts before off, or -1. */
+static int hrm__tau_cp_before(const hrm__tau *L, hrm_real off)
+{
+    int k = L->ncp - 1;
+    while (k >= 0 && !(L->cp[k].a < off)) --k;
+    return k;
+}
+
 /* Accept one more panel after the last (the ray's first from t0), its
    coefficients into co. */
 static void hrm__tau_march(hrm__ctx *c, hrm__tau *L, hrm__tcoef *co)
@@ -2203,8 +2211,7 @@ static void hrm__tau_at(hrm__ctx *c, hrm__tau *L, hrm_real off, hrm_real tau[HRM
     /* Past the last panel: march on, from the farthest checkpoint before
        off if it is ahead. */
     if (L->count > 0 && off > L->tab[(L->count - 1) % HRM_TAU_PANELS].b) {
-        int k = L->ncp - 1;
-        while (k >= 0 && !(L->cp[k].a < off)) --k;
+        int k = hrm__tau_cp_before(L, off);
         if (k >= 0 && L->cp[k].id > L->count) hrm__tau_from(L, k);
     }
     while (L->count == 0 || L->count == L->base ||
@@ -2222,8 +2229,7 @@ static void hrm__tau_at(hrm__ctx *c, hrm__tau *L, hrm_real off, hrm_real tau[HRM
     if (off < L->tab[lo % HRM_TAU_PANELS].a) {
         /* forgotten: march again, from the nearest checkpoint before off
            (or t0) */
-        int k = L->ncp - 1;
-        while (k >= 0 && !(L->cp[k].a < off)) --k;
+        int k = hrm__tau_cp_before(L, off);
         if (k >= 0) {
             hrm__tau_from(L, k);
         } else {
