@@ -451,19 +451,21 @@
    equiangular warp and an occluder's edges as breakpoints.
    Stack use, measured (tests/stack.c: every method over its forms, warps,
    fits, Gauss-Kronrod modes and rules, breakpoints and media, on a painted
-   thread stack), double, 3 channels, gcc -O0/-O2: 31-33 KiB for the
+   thread stack), double, 3 channels, gcc -O2: 32-34 KiB for the
    rectangle rule, Monte Carlo, the analytic march, Simpson and Euler,
    37 KiB for RK4, Adams-Bashforth and the Runge-Kutta pairs, 43 KiB for
-   local and 82 KiB for global Gauss-Kronrod, 108 KiB for nested Simpson;
-   hrm_transmittance 31 KiB (106 with coupled tau under nested Simpson).
-   clang -O2 inlines the adaptive drivers into one frame: 101 KiB for the
-   pairs, 105 for Gauss-Kronrod, 122 for nested Simpson. About 2.2 times
+   local and 89 KiB for global Gauss-Kronrod, 122 KiB for nested Simpson;
+   hrm_transmittance 32 KiB (120 with coupled tau under nested Simpson).
+   clang -O2 inlines the adaptive drivers into one frame: 112 KiB for the
+   pairs, 115 for Gauss-Kronrod, 137 for nested Simpson. About 2.2 times
    that with 8 channels, half in float; at most (48 + 48 HRM_CHANNELS) KiB
    in double, half in float. What sets it: every solve's context and
-   transmittance layer (25 KiB, mostly the layer's panel table of
-   HRM_TAU_PANELS), global Gauss-Kronrod's HRM_GK_INTERVALS intervals (43
-   KiB), nested Simpson's HRM_NS_INTERVALS intervals and pool (52 KiB)
-   with its finish's HRM_MAX_DEPTH stack (22 KiB) below them. A shadow ray
+   transmittance layer (26 KiB, mostly the layer's panel table of
+   HRM_TAU_PANELS), global Gauss-Kronrod's HRM_GK_INTERVALS intervals (49
+   KiB), nested Simpson's HRM_NS_INTERVALS intervals and pool (62 KiB)
+   with its finish's HRM_MAX_DEPTH stack (27 KiB) below them. (The medium
+   check's sigma_t per node and miss per interval added 15 KiB to nested
+   Simpson, 8 to global Gauss-Kronrod.) A shadow ray
    solved inside Li (hrm_solve or hrm_transmittance) nests a second solve:
    up to twice that. No heap.
 
