@@ -14,9 +14,11 @@
 #                for FUZZ_TIME seconds (default 60) from the seed corpus
 #                tests/corpus/; findings in build/fuzz/crashes/ (needs clang's
 #                libFuzzer: Debian package libfuzzer-14-dev where missing)
-#   make render  the renderer-level comparison (examples/render.c): two scenes,
-#                a reference, every configuration over a ladder of budgets,
-#                sheets and summary.md in render/out/ only (ignored by git)
+#   make render  the renderer-level comparison (examples/render.c): three
+#                scenes, an independent reference each, the production
+#                marches and hrm's configurations over ladders of budgets,
+#                costs at equal RMSE; sheets and summary.md in render/out/
+#                only (ignored by git)
 #   make render-quick   the same at a quarter of the pixels (render/out/quick/)
 #   make render-snapshot   make render, then refresh the committed snapshot
 #                examples/results/ (the overview sheets and summary.md); on
@@ -96,8 +98,8 @@ render-quick: $(BUILD)/example_render
 
 render-snapshot: render
 	@mkdir -p examples/results
-	cp render/out/shafts_overview.png render/out/cloud_overview.png render/out/summary.md \
-	    examples/results/
+	cp render/out/shafts_overview.png render/out/cloud_overview.png \
+	    render/out/smoke_overview.png render/out/summary.md examples/results/
 
 examples: $(BUILD)/example_ray $(BUILD)/example_render
 

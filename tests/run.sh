@@ -156,6 +156,16 @@ else
     echo "quickstart: FAILED"; cat "$B/quickstart.log"; fail=$((fail + 1))
 fi
 
+# The examples build with warnings as errors (make render and the per-ray
+# example run them; here they only have to compile).
+configs=$((configs + 1))
+if gcc -std=c99 -O2 $WARN -I. examples/ray.c -o "$B/example_ray" -lm 2> "$B/examples.log" &&
+   gcc -std=c99 -O2 $WARN -I. examples/render.c -o "$B/example_render" -lm -pthread 2>> "$B/examples.log"; then
+    pass=$((pass + 1)); echo "examples: ray.c and render.c compile"
+else
+    echo "examples: build FAILED"; cat "$B/examples.log"; fail=$((fail + 1))
+fi
+
 echo "$configs configurations"
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
