@@ -256,20 +256,31 @@
    HRM_ADAMS_BASHFORTH  4      N + 3 (N >= 4)      4-step, started with 3 RK4
                                                    steps; 1 new per step
    HRM_ANALYTIC_MARCH   2      N                   what renderers ship
-                        (1)                        (Hillaire 2015): the source
-                                                   constant over each step at
-                                                   its midpoint (jitter: one
+                        (1)                        (Hillaire 2015): one
+                                                   sample per step, at its
+                                                   midpoint (jitter: one
                                                    random offset per ray),
                                                    the extinction integrated
                                                    exactly in t, sigma_t
                                                    taken at the sample (tau
                                                    coupled, its default).
-                                                   Exact for a constant
+                                                   Without a warp, and under
+                                                   the distance or a user
+                                                   warp: the source constant
+                                                   over each step in t;
+                                                   exact for a constant
                                                    S / sigma_t at any N,
                                                    0 <= L <= sup(S/sigma_t)
                                                    (1 - Tr) however thick.
-                                                   A warp places its steps;
-                                                   it is not exact in u
+                                                   Under the equiangular
+                                                   warp: S dt/du constant
+                                                   over each step in u (the
+                                                   production equiangular
+                                                   march, Kulla and Fajardo
+                                                   2012), second order once
+                                                   the steps resolve the
+                                                   light; see IMPORTANCE
+                                                   SAMPLING
    Adaptive (rtol, atol, h_min, h_max, max_evals; see TOLERANCES):
    HRM_NESTED_SIMPSON   6      2 per interval      Simpson on the halves vs
                                                    on the whole (Lyness), the
@@ -513,6 +524,18 @@
    transmittance callback is asked for Tr(t0, t) at that last abscissa.
    In the RTE form, warps make the equation stiff (Munoz s.6); the
    optical-depth form is not affected.
+   The analytic march under a warp: N steps equal in u, each step's
+   extinction integrated in t. Under the distance and user warps the
+   source is held constant over a step in t, as without a warp (exact for
+   a constant S / sigma_t at any N, 0 <= L <= sup(S / sigma_t) (1 - Tr)).
+   Under the equiangular warp S dt/du is held constant over a step in u,
+   as that warp's sampling weighs its light (Kulla and Fajardo 2012, the
+   production equiangular march): exact where S dt/du is constant and the
+   medium thin, second order once the steps resolve the light (N well
+   above pi r / D, r the ray's reach from the light's foot), first order
+   below; a source the warp does not follow (emission, a constant source)
+   is sampled as the rules in u sample it. The bound on L holds without
+   jitter; a jittered sample can exceed it, as a stratified estimator's.
 
    ==========================================================================
    BREAKPOINTS (options.breaks, options.nbreaks)
@@ -3270,16 +3293,26 @@ static void hrm__efit_panel(const hrm__ctx *c, const hrm__efit *F, const hrm__pt
 
 /* The analytic march, what renderers ship (Hillaire 2015): N steps, one
    sample each (the midpoint, or one random offset per ray with jitter);
-   over a step the source is taken constant at its sample and the
-   extinction integrated exactly: dL = Tr(a) S dt (1 - exp(-dtau)) /
-   dtau. dtau is sigma_t at the sample times dt (tau coupled, the
-   default), or tau's closed form or the layer's between the step's ends.
-   Exact in a homogeneous medium with a constant source at any N, and
-   never above sup(S / sigma_t) (1 - Tr) however thick the medium. A warp
-   places the steps (equal in u, the sample at the step's midpoint in u);
-   each step is still integrated in t, so a source whose S dt/du is flat
-   in u (a point light under the equiangular warp) is not made exact: the
-   march's error is that of a constant source over each step in t. */
+   over a step the source is taken constant and the extinction integrated
+   exactly: dL = Tr(a) S dt (1 - exp(-dtau)) / dtau. dtau is sigma_t at
+   the sample times dt (tau coupled, the default), or tau's closed form or
+   the layer's between the step's ends. Without a warp, and under the
+   distance or a user warp (which only place the steps, equal in u), S is
+   the sample's, constant over the step in t: exact in a homogeneous
+   medium with a constant source at any N wherever the steps lie (the
+   distance warp's dt/du is the 1 / Tr of sigma_ref, which the step's
+   extinction already integrates exactly), and never above
+   sup(S / sigma_t) (1 - Tr) however thick the medium. Under the
+   equiangular warp S dt/du (gq) is held constant over the step in u, as
+   that warp's sampling weighs its point light (Kulla and Fajardo 2012,
+   the production equiangular march): S dt = gq du, S the source's mean
+   over the step in t. Exact where S dt/du is constant in u and the medium
+   thin (the warp's light), second order once the steps resolve dt/du; a
+   constant source is not exact then (gq du is the midpoint rule for
+   S dt), and the bound holds while the midpoint's dt/du du is at most dt
+   (dt/du convex, the sample at the midpoint): a jittered sample can
+   exceed it, as a stratified estimator's does. The manual's IMPORTANCE
+   SAMPLING measures both. */
 static void hrm__march(hrm__ctx *c, int N, hrm_real xi, hrm_real L[HRM__CH],
                        hrm_real tau[HRM__CH])
 {
@@ -3301,7 +3334,18 @@ static void hrm__march(hrm__ctx *c, int N, hrm_real xi, hrm_real L[HRM__CH],
         if (dt < 0) dt = 0;
         if (c->closed) hrm__tau_of(c, off_r, tr);
         for (i = 0; i < HRM__CH; ++i) {
-            hrm_real S = pt.J > 0 ? pt.gq[i] / pt.J : 0, dtau, dL;
+            /* the source times the step's width in t: under the
+               equiangular warp S dt/du (gq) held constant over the step in
+               u, as its sampling weighs a point light (Kulla and Fajardo
+               2012): gq du, a mean source over the step of gq du / dt.
+               Otherwise S at the sample times dt: exact for a constant
+               S / sigma_t wherever the steps lie, where gq du would be
+               first order under the distance warp (its dt/du, the 1 / Tr
+               of sigma_ref, is what the step's extinction integrates) */
+            hrm_real Sdt = c->warp != HRM_WARP_EQUIANGULAR ? (pt.J > 0 ? pt.gq[i] / pt.J : 0) * dt
+                           : dt > 0                        ? pt.gq[i] * (pr - pl)
+                                                           : 0;
+            hrm_real dtau, dL;
             if (c->closed) {
                 dtau = tr[i] - tl[i];
             } else {
@@ -3311,7 +3355,7 @@ static void hrm__march(hrm__ctx *c, int N, hrm_real xi, hrm_real L[HRM__CH],
                 tr[i] = tau[i] + dtau;
             }
             if (!(dtau > 0)) dtau = 0;
-            dL = S * dt * HRM_EXP(-(c->closed ? tl[i] : tau[i])) * hrm__phi1(dtau);
+            dL = Sdt * HRM_EXP(-(c->closed ? tl[i] : tau[i])) * hrm__phi1(dtau);
             L[i] += dL;
             /* Tr underflowed within the step (transmittance callback):
                dtau only bounded below, dL above */

@@ -396,10 +396,14 @@ static int xg_tr_ok(const xg_case *k, double tau, double got, double want, doubl
    the manual's worst measured 2.3 rtol; the passes here reach 1.4 rtol,
    and 10 rtol would let L = 0 pass at rtol 0.1); a fixed-step method
    where the manual promises it exact at any N: the analytic march
-   (constant S / sigma_t, any warp), fitted Simpson (constant source, no
-   warp) and the distance warp under a constant source in the channels as
-   thin as sigma_ref ("exact for any N in a grey homogeneous medium under
-   constant Li"). floor: fp_floor(evals, min(tau, 40)) (beyond 40 Tr < eps),
+   (constant S / sigma_t, holding the source constant over each step in
+   t: no warp, the distance and user warps; not the equiangular warp,
+   under which it holds S dt/du constant over each step in u, and a
+   constant S does not make S dt/du constant), fitted Simpson (constant
+   source, no warp) and the distance warp under a constant source in the
+   channels as thin as sigma_ref ("exact for any N in a grey homogeneous
+   medium under constant Li"). floor: fp_floor(evals, min(tau, 40))
+   (beyond 40 Tr < eps),
    XG_WARP_COND times that under an equiangular warp, plus tau_tol ("L's
    relative error from tau below tau_tol"), plus for the shadow its edges
    misplaced by t's resolution eps |t0|. The shadow only where its edges
@@ -409,7 +413,8 @@ static int xg_tr_ok(const xg_case *k, double tau, double got, double want, doubl
 static void xg_accuracy(xg_tally *t, const xg_case *k, const xg_scene *s, const hrm_result *r, hrm_status st,
                         double rtol_eff)
 {
-    const int fixed = xg_fixed(k->method), exact_any = k->method == HRM_ANALYTIC_MARCH || (k->expo && !k->warp);
+    const int fixed = xg_fixed(k->method);
+    const int exact_any = (k->method == HRM_ANALYTIC_MARCH && k->warp != XW_EQUIANGULAR) || (k->expo && !k->warp);
     const int eq = k->warp == XW_EQUIANGULAR || (k->warp == XW_USER && s->user == XU_TAN);
     int c;
     for (c = 0; c < NCH && !(k->form == HRM_FORM_RTE && k->callbacks); ++c) {

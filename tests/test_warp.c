@@ -508,9 +508,12 @@ static void wp_every_method(void)
             }
             snprintf(what, sizeof what, "%s, %s:", li ? "point light" : "directional", cs->name);
             for (mi = 0; mi < N_METHODS_ALL; ++mi) {
-                /* the analytic march integrates each step in t with the
-                   source held constant: its bound is not one of the rules
-                   in u (test_march.c checks it under every warp) */
+                /* the analytic march integrates Tr over each step in t,
+                   holding the source constant over it in t (distance and
+                   user warps) or S dt/du constant over it in u
+                   (equiangular): its error is not a rule's in u, and
+                   neither is its bound (test_exponential.c checks it
+                   under every warp) */
                 if (every_method[mi] == HRM_ANALYTIC_MARCH) continue;
                 wp_check_method(&p, every_method[mi], 0, &w, &bd, t0, t1, what);
                 if (every_method[mi] == HRM_MONTE_CARLO)
@@ -533,7 +536,9 @@ static void wp_every_method(void)
 /* A grey homogeneous medium under a constant Li: in u = 1 - e^{-sigma_t
    (t - t0)} the integrand sigma_s Li e^{-sigma_t (t - t0)} dt/du is the
    constant sigma_s Li / sigma_t, which every rule integrates exactly with
-   any N >= 1. Closed form sigma_s Li / sigma_t (1 - e^{-sigma_t T}) (and
+   any N >= 1, and so does the analytic march, which holds the source
+   constant over each step in t (each step's 1 - e^{-dtau} telescopes).
+   Closed form sigma_s Li / sigma_t (1 - e^{-sigma_t T}) (and
    sigma_s Li / sigma_t for T = inf). Bound: round-off, 8 eps (n + 16)
    relative; with t1 = inf hrm drops the last eps/2 of u. Rays of optical
    depth 4, 40, 8e5 and infinity: the exactness holds for any length. */
@@ -1148,7 +1153,9 @@ static void wp_equiangular_edges(void)
     }
     /* The light off the segment, D > 0: behind the camera (delta < t0) and
        past the surface (delta > t1); and a light 1e-9 from the ray inside
-       the segment. Exact to sig T + round-off for every method. */
+       the segment. Exact to sig T + round-off for every method (the
+       analytic march too: under this warp it holds S dt/du, here
+       constant, over each step in u, and the medium is thin). */
     {
         static const double deltas[] = { -2.0, 9.0, 3.3 };
         static const double Ds[] = { 0.7, 0.7, 1e-9 };
@@ -1160,9 +1167,6 @@ static void wp_equiangular_edges(void)
                 hrm_medium m;
                 hrm_result r;
                 double worst = 0, bound, D = Ds[k];
-                /* exact in u, where S dt/du is constant: not the analytic
-                   march, which holds S constant over each step in t */
-                if (meth == HRM_ANALYTIC_MARCH) continue;
                 /* float: t near 3.3 is resolved to 2.4e-7, so a light
                    1e-9 away cannot be placed by the host's Li (whose error
                    near the peak is |t| eps / D relative): D = 1e-2 there */
@@ -1229,7 +1233,8 @@ static void wp_equiangular_edges(void)
     /* Long rays [0, 1e6] and short rays far from the origin. */
     {
         /* long, equiangular: light at 5e5, D = 1e3 (float: t resolved to
-           0.03 there); sigma = 1e-15 (sigma T = 1e-9) */
+           0.03 there); sigma = 1e-15 (sigma T = 1e-9): every method
+           exact to that, the analytic march as above */
         double sg = 1e-15;
         for (c = 0; c < NCH; ++c) sc.sig_s[c] = sg;
         sc.delta = 5e5;
@@ -1237,7 +1242,6 @@ static void wp_equiangular_edges(void)
         for (mi = 0; mi < N_METHODS_ALL; ++mi) {
             hrm_method meth = every_method[mi];
             hrm_warp w = wp_warp(HRM_WARP_EQUIANGULAR, 0, 5e5, 1e3, NULL);
-            if (meth == HRM_ANALYTIC_MARCH) continue; /* as above: exact in u only */
             hrm_options o = wp_options(meth, 8, &w);
             hrm_medium m = problem_medium(&p);
             hrm_result r;
