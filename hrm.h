@@ -75,6 +75,10 @@
    Every member is optional. A NULL callback is an absent term, and an absent
    term is never called and costs nothing:
      sigma_a, sigma_s  NULL: zero.     sigma_t  NULL: sigma_a + sigma_s.
+     sigma             both coefficients from one call (one density lookup
+                       where both follow a density: sigma_a = rho k_a,
+                       sigma_s = rho k_s); sigma_t is their sum. Given with
+                       any of the three above: HRM_ERR_BAD_MEDIUM.
      Le                NULL: no emission (and never called where sigma_a = 0
                        in every channel, unless HRM_EMISSION_PER_LENGTH).
      Li                NULL: no scattering (and never called where sigma_s = 0
@@ -197,7 +201,8 @@
                                    HRM_ERR_RANGE, at
    the medium
      const_sigma_a, const_sigma_s negative, NaN or infinite (homogeneous);
-     an unknown bit in flags; feature negative, NaN or infinite
+     an unknown bit in flags; feature negative, NaN or infinite; sigma
+     given with sigma_a, sigma_s or sigma_t (even homogeneous)
                                    HRM_ERR_BAD_MEDIUM, before
      feature denormal or huge      valid: the scan's 4097 points at most,
                                    its 33 at least
@@ -205,7 +210,8 @@
      a constant denormal; within R (warnings where the ray is opaque
      within t's resolution)        valid
    callbacks' values
-     sigma_a, sigma_s, sigma_t NaN, infinite or negative (even -1e-30);
+     sigma_a, sigma_s, sigma_t, sigma NaN, infinite or negative (even
+     -1e-30);
      Le, Li NaN, infinite or negative; a transmittance NaN, infinite,
      below 0, above 1, or rising along the ray (beyond 64 eps of
      max(1, tau) relative)         HRM_ERR_CALLBACK_VALUE, at
@@ -805,7 +811,7 @@ typedef HRM_REAL hrm_real;
     X(HRM_ERR_BAD_STEPS, -3, "options.steps is negative")                    \
     X(HRM_ERR_BAD_METHOD, -4, "unknown method")                              \
     X(HRM_ERR_BAD_OPTION, -5, "an option is out of range (form, tolerances, step bounds, budget)") \
-    X(HRM_ERR_BAD_MEDIUM, -6, "a constant coefficient or the feature of the medium is negative or not finite, or an unknown flag") \
+    X(HRM_ERR_BAD_MEDIUM, -6, "a constant coefficient or the feature of the medium is negative or not finite, an unknown flag, or sigma given with sigma_a, sigma_s or sigma_t") \
     X(HRM_ERR_CALLBACK_VALUE, -7, "a callback returned NaN, an infinity, a negative coefficient or source, or a transmittance outside [0,1] or rising along the ray") \
     X(HRM_ERR_BAD_WARP, -8, "warp parameters invalid: sigma_ref or D negative or not finite, a user warp without its callbacks or not increasing") \
     X(HRM_ERR_SINGULAR, -9, "the equiangular light lies on the ray within [t0, t1] (D = 0): the integral diverges") \
@@ -921,6 +927,8 @@ typedef struct hrm_warp {
 #define HRM_EMISSION_PER_LENGTH  2u /* source is Le itself, not sigma_a*Le */
 
 typedef void (*hrm_spectrum_fn)(void *user, hrm_real t, hrm_real out[HRM_CHANNELS]);
+typedef void (*hrm_sigma_fn)(void *user, hrm_real t, hrm_real sigma_a[HRM_CHANNELS],
+                             hrm_real sigma_s[HRM_CHANNELS]);
 typedef void (*hrm_transmittance_fn)(void *user, hrm_real ta, hrm_real tb,
                                      hrm_real out[HRM_CHANNELS]);
 
@@ -928,6 +936,9 @@ typedef struct hrm_medium {
     void *user;                        /* passed to every callback */
     hrm_spectrum_fn sigma_a, sigma_s;  /* NULL: zero */
     hrm_spectrum_fn sigma_t;           /* NULL: sigma_a + sigma_s */
+    hrm_sigma_fn sigma;                /* sigma_a and sigma_s from one call
+                                          (one density lookup), instead of
+                                          the three above; NULL: those */
     hrm_spectrum_fn Le, Li;            /* NULL: absent, never called */
     hrm_transmittance_fn transmittance;/* NULL: integrate sigma_t */
     unsigned flags;                    /* HRM_MEDIUM_*, HRM_EMISSION_* */
@@ -1633,6 +1644,20 @@ static int hrm__coeffs(hrm__ctx *c, hrm_real s, int want_sa, int want_ss, int wa
     hrm__fill(sa, HRM__CH, 0);
     hrm__fill(ss, HRM__CH, 0);
     hrm__fill(st, HRM__CH, 0);
+    if (m->sigma) {
+        /* both coefficients from one call, sigma_t their sum; one that is
+           not wanted reads as zero, as where it has its own callback */
+        if (!(want_sa || want_ss || want_st) || c->status != HRM_OK) return 0;
+        m->sigma(m->user, s, sa, ss);
+        hrm__check(c, sa, 1);
+        hrm__check(c, ss, 1);
+        for (i = 0; i < HRM__CH; ++i) {
+            if (want_st) st[i] = sa[i] + ss[i];
+            if (!want_sa && !want_st) sa[i] = 0;
+            if (!want_ss && !want_st) ss[i] = 0;
+        }
+        return 1;
+    }
     if (m->sigma_a && (want_sa || derive_st) && c->status == HRM_OK) {
         m->sigma_a(m->user, s, sa);
         hrm__check(c, sa, 1);
@@ -5189,6 +5214,7 @@ static hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, const hrm_medium *m, 
             return HRM_ERR_BAD_BREAKS;
     }
     if (m->flags & ~(HRM_MEDIUM_HOMOGENEOUS | HRM_EMISSION_PER_LENGTH)) return HRM_ERR_BAD_MEDIUM;
+    if (m->sigma && (m->sigma_a || m->sigma_s || m->sigma_t)) return HRM_ERR_BAD_MEDIUM;
     if (!(HRM__FINITE(m->feature) && m->feature >= 0)) return HRM_ERR_BAD_MEDIUM;
     /* the warp's parameters, even where an empty ray will not use them */
     if (hrm__warp_valid(&o->warp) != HRM_OK) return HRM_ERR_BAD_WARP;
@@ -5221,7 +5247,7 @@ static hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, const hrm_medium *m, 
                      (o->method == HRM_GAUSS_KRONROD && o->gk_mode == HRM_GK_GLOBAL));
     /* the medium scan: adaptive methods by default, fixed-step ones when
        asked (find_jumps = 1; their cost is otherwise N's alone) */
-    c->scan = (o->find_jumps == 1 || (o->find_jumps == 0 && c->use_memo)) && !c->homog && (m->sigma_a || m->sigma_s || m->sigma_t) && t_fine;
+    c->scan = (o->find_jumps == 1 || (o->find_jumps == 0 && c->use_memo)) && !c->homog && (m->sigma_a || m->sigma_s || m->sigma_t || m->sigma) && t_fine;
     c->gk = o->gk_rule == HRM_GK_K7 ? &hrm__k7 : &hrm__k15;
     c->rough_left = HRM__JUMP;
     if (c->homog) {
@@ -5235,8 +5261,8 @@ static hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, const hrm_medium *m, 
             if (c->st[i] > c->range) return HRM_ERR_RANGE;
         }
     }
-    c->use_le = !tr_only && m->Le && (c->per_length || c->homog || m->sigma_a);
-    c->use_li = !tr_only && m->Li && (c->homog || m->sigma_s);
+    c->use_le = !tr_only && m->Le && (c->per_length || c->homog || m->sigma_a || m->sigma);
+    c->use_li = !tr_only && m->Li && (c->homog || m->sigma_s || m->sigma);
     /* Tr at the nodes: a closed form where there is one (the RTE form
        integrates Tr itself, so it takes sigma_t samples even then), else
        the transmittance layer, else the rules' own tau. */

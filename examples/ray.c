@@ -52,21 +52,24 @@ static double density(const ray *r, hrm_real t) {
     return r->s->peak * exp(-0.5 * d2 / (r->s->width * r->s->width));
 }
 
-/* sigma_a, sigma_s and sigma_t all follow the density: rho(t) * k. */
-static void scaled(void *user, hrm_real t, const double k[3], hrm_real out[HRM_CHANNELS]) {
-    double rho = density((const ray *)user, t);
+/* sigma_a, sigma_s and sigma_t all follow the density: rho(t) * k. The
+   camera ray takes sigma_a and sigma_s from one density lookup
+   (medium.sigma); shadow rays need extinction only (medium.sigma_t). */
+static void coefficients(void *user, hrm_real t, hrm_real sa[HRM_CHANNELS],
+                         hrm_real ss[HRM_CHANNELS]) {
+    const ray *r = (const ray *)user;
+    double rho = density(r, t);
     int c;
-    for (c = 0; c < 3; ++c) out[c] = (hrm_real)(rho * k[c]);
+    for (c = 0; c < 3; ++c) {
+        sa[c] = (hrm_real)(rho * r->s->absorb[c]);
+        ss[c] = (hrm_real)(rho * r->s->scatter[c]);
+    }
 }
-static void sigma_a(void *user, hrm_real t, hrm_real out[HRM_CHANNELS]) {
-    scaled(user, t, ((const ray *)user)->s->absorb, out);
-}
-static void sigma_s(void *user, hrm_real t, hrm_real out[HRM_CHANNELS]) {
-    scaled(user, t, ((const ray *)user)->s->scatter, out);
-}
-/* Shadow rays need extinction only: one callback instead of two. */
 static void sigma_t(void *user, hrm_real t, hrm_real out[HRM_CHANNELS]) {
-    scaled(user, t, ((const ray *)user)->s->extinct, out);
+    const ray *r = (const ray *)user;
+    double rho = density(r, t);
+    int c;
+    for (c = 0; c < 3; ++c) out[c] = (hrm_real)(rho * r->s->extinct[c]);
 }
 
 /* Le is the radiance of the hot gas, not a source per length: hrm
@@ -147,8 +150,7 @@ int main(void) {
     shadow_opt.steps = 8;
     memset(&m, 0, sizeof m);
     m.user = &r;
-    m.sigma_a = sigma_a; /* sigma_t left NULL: hrm adds sigma_a + sigma_s */
-    m.sigma_s = sigma_s;
+    m.sigma = coefficients; /* one lookup: sigma_a and sigma_s (sigma_t their sum) */
     m.Le = emitted;
     m.Li = in_scattered;
 

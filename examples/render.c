@@ -455,9 +455,16 @@ static void dens_sigma(void *user, hrm_real t, hrm_real out[HRM_CHANNELS], const
     int c;
     for (c = 0; c < 3; ++c) out[c] = (hrm_real)(rho * k[c]);
 }
-static void dens_sigma_s(void *u, hrm_real t, hrm_real o[HRM_CHANNELS])
+/* sigma_a and sigma_s from one lookup (medium.sigma). */
+static void dens_sigma_as(void *user, hrm_real t, hrm_real sa[HRM_CHANNELS], hrm_real ss[HRM_CHANNELS])
 {
-    dens_sigma(u, t, o, ((ray *)u)->s->ks);
+    ray *r = (ray *)user;
+    double rho = density_at(r, (double)t);
+    int c;
+    for (c = 0; c < 3; ++c) {
+        sa[c] = (hrm_real)(rho * r->s->ka[c]);
+        ss[c] = (hrm_real)(rho * r->s->ks[c]);
+    }
 }
 static void dens_sigma_t(void *u, hrm_real t, hrm_real o[HRM_CHANNELS])
 {
@@ -1093,11 +1100,10 @@ static void shade(const scene *s, const config *cf, double q, int x, int y, doub
                 m.const_sigma_s[c] = (hrm_real)s->ss[c];
             }
         } else {
-            /* sigma_s and sigma_t (not sigma_a: nothing emits), each a
-               lookup; the medium scan samples sigma at the feature's
-               spacing where the scene has one */
-            m.sigma_s = dens_sigma_s;
-            m.sigma_t = dens_sigma_t;
+            /* sigma_a and sigma_s from one lookup; the medium scan
+               samples sigma at the feature's spacing where the scene has
+               one */
+            m.sigma = dens_sigma_as;
             m.feature = (hrm_real)s->feature;
         }
         if (cf->breaks) {

@@ -94,7 +94,7 @@ void scene_set_sine(scene *sc, double a0, double a1)
 
 void scene_reset_counts(scene *sc)
 {
-    sc->n_sa = sc->n_ss = sc->n_st = sc->n_le = sc->n_li = sc->n_tr = 0;
+    sc->n_sa = sc->n_ss = sc->n_st = sc->n_le = sc->n_li = sc->n_tr = sc->n_one = 0;
     sc->n_never = 0;
     sc->tmin = 1e300;
     sc->tmax = -1e300;
@@ -228,6 +228,15 @@ void het_absorber(void *user, hrm_real t, hrm_real out[NCH])
     het_out(sc, t, out, &sc->n_sa, POISON_SA, 2);
 }
 
+void het_sigma(void *user, hrm_real t, hrm_real sa[NCH], hrm_real ss[NCH])
+{
+    scene *sc = (scene *)user;
+    long unused = 0;
+    sc->n_one++;
+    het_out(sc, t, sa, &unused, POISON_SA, 0);
+    het_out(sc, t, ss, &unused, POISON_SS, 1);
+}
+
 void het_transmittance(void *user, hrm_real ta, hrm_real tb, hrm_real out[NCH])
 {
     scene *sc = (scene *)user;
@@ -339,6 +348,8 @@ hrm_medium problem_medium(const problem *p)
     }
     if (p->sigmas == SIGMA_A) {
         m.sigma_a = het_absorber;
+    } else if (p->sigmas == SIGMA_ONE) {
+        m.sigma = het_sigma;
     } else if (p->sigmas == SIGMA_TS) {
         m.sigma_t = het_sigma_t;
         m.sigma_s = het_sigma_s;

@@ -130,6 +130,7 @@ typedef struct scene {
     double poison_value;
     /* recording */
     long n_sa, n_ss, n_st, n_le, n_li, n_tr;
+    long n_one;                 /* calls of het_sigma (both coefficients) */
     long n_never;               /* calls of callbacks that must not be called */
     double tmin, tmax;          /* over every spectrum callback */
     double tr_amin, tr_bmax;    /* over the transmittance callback (ta, tb) */
@@ -173,6 +174,7 @@ void het_sigma_a(void *user, hrm_real t, hrm_real out[NCH]);   /* pa sigma_t */
 void het_sigma_s(void *user, hrm_real t, hrm_real out[NCH]);   /* (1 - pa) sigma_t */
 void het_sigma_t(void *user, hrm_real t, hrm_real out[NCH]);
 void het_absorber(void *user, hrm_real t, hrm_real out[NCH]);  /* sigma_a = sigma_t, counted as sigma_a */
+void het_sigma(void *user, hrm_real t, hrm_real sa[NCH], hrm_real ss[NCH]); /* both, one call */
 void het_transmittance(void *user, hrm_real ta, hrm_real tb, hrm_real out[NCH]);
 void const_Le(void *user, hrm_real t, hrm_real out[NCH]);      /* logs t in log_le */
 /* Abscissae logged twice or more (the log of Le or Li calls). */
@@ -188,7 +190,8 @@ enum { P_HOM, P_HET };
 enum {
     SIGMA_AS, /* sigma_a and sigma_s */
     SIGMA_A,  /* an absorber: sigma_a = sigma_t (het_absorber), no scattering */
-    SIGMA_TS  /* sigma_t and sigma_s (hrm derives sigma_a) */
+    SIGMA_TS, /* sigma_t and sigma_s (hrm derives sigma_a) */
+    SIGMA_ONE /* both from one call (medium.sigma), counted in n_one */
 };
 
 typedef struct problem {

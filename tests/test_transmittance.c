@@ -933,6 +933,102 @@ static void tr_taught_remarch(void)
     if (verbose()) NOTE("taught: at most %ld sigma calls per solve (L %.10g)", most, want);
 }
 
+
+/* 11. One lookup per abscissa: medium.sigma gives sigma_a and sigma_s from
+   one call. For every method, no warp and the distance and equiangular
+   warps, tau decoupled and coupled, a point light with emission and a
+   directional light without: the same bits as sigma_a and sigma_s as two
+   callbacks (L, Tr, every count; the values are the same numbers and
+   sigma_t their sum either way), one call per medium evaluation, and so
+   never more calls than the separate callbacks take (twice as many where
+   both are needed: sigma_t, or emission and scattering; as many where
+   only sigma_s is, at a node whose tau is known); hrm_transmittance
+   likewise.
+   Bad input: sigma beside another coefficient callback is
+   HRM_ERR_BAD_MEDIUM before any call; a NaN from it stops the solve with
+   HRM_ERR_CALLBACK_VALUE. */
+static void tr_one_lookup(void)
+{
+    static const hrm_tau_mode modes[2] = {HRM_TAU_DECOUPLED, HRM_TAU_COUPLED};
+    int mi, w, k, lt, diff = 0, miscount = 0, more = 0, cases = 0;
+    long sep = 0, one = 0;
+    for (mi = 0; mi < N_METHODS_ALL; ++mi)
+        for (w = 0; w < 3; ++w)
+            for (k = 0; k < 2; ++k)
+                for (lt = 0; lt < 2; ++lt) {
+                    scene sc;
+                    problem p;
+                    hrm_options o = hrm_default_options(every_method[mi]);
+                    hrm_result a, b;
+                    hrm_status sa_st, one_st;
+                    scene_init(&sc);
+                    p = make_problem(&sc, P_HET, lt == 0, lt == 0 ? LIGHT_POINT : LIGHT_DIR);
+                    o.steps = 16;
+                    o.tau_mode = modes[k];
+                    o.warp.kind = w == 0 ? HRM_WARP_NONE : w == 1 ? HRM_WARP_DISTANCE : HRM_WARP_EQUIANGULAR;
+                    o.warp.delta = (hrm_real)3;
+                    o.warp.D = (hrm_real)1;
+                    long sep1;
+                    sa_st = solve_opt(&p, 0.5, 6.5, &o, &a);
+                    sep1 = sc.n_sa + sc.n_ss;
+                    sep += sep1;
+                    scene_reset_counts(&sc);
+                    p.sigmas = SIGMA_ONE;
+                    one_st = solve_opt(&p, 0.5, 6.5, &o, &b);
+                    one += sc.n_one;
+                    cases++;
+                    if (sa_st != one_st || !same_result(&a, &b)) {
+                        diff++;
+                        if (verbose())
+                            NOTE("%s, warp %d, tau %d, light %d: differs", hrm_method_name(every_method[mi]), w,
+                                 k, lt);
+                    }
+                    miscount += sc.n_one != b.stats.medium_evals || sc.n_sa + sc.n_ss != 0;
+                    more += sc.n_one > sep1;
+                }
+    CHECK_INT(diff, 0, "medium.sigma: the same L, Tr and counts as sigma_a and sigma_s (%d solves)", cases);
+    CHECK_INT(miscount, 0, "medium.sigma: one call per medium evaluation, no other coefficient call");
+    CHECK_INT(more, 0, "medium.sigma: never more calls than sigma_a and sigma_s (in all: %ld, %ld)", one, sep);
+    NOTE("one lookup per abscissa: %ld calls of medium.sigma, %ld of sigma_a and sigma_s", one, sep);
+    {
+        scene sc;
+        problem p;
+        hrm_medium m;
+        hrm_real tra[NCH], trb[NCH];
+        hrm_stats s;
+        hrm_result r;
+        int c, same = 1;
+        scene_init(&sc);
+        p = make_problem(&sc, P_HET, 0, LIGHT_NONE);
+        m = problem_medium(&p);
+        CHECK_INT(hrm_transmittance(&m, 0.5, 6.5, NULL, tra, NULL), HRM_OK, "transmittance: status");
+        p.sigmas = SIGMA_ONE;
+        m = problem_medium(&p);
+        scene_reset_counts(&sc);
+        CHECK_INT(hrm_transmittance(&m, 0.5, 6.5, NULL, trb, &s), HRM_OK, "transmittance, sigma: status");
+        for (c = 0; c < NCH; ++c) same &= tra[c] == trb[c];
+        CHECK(same, "transmittance: medium.sigma gives the same Tr");
+        CHECK_INT(sc.n_one, s.medium_evals, "transmittance: one call per medium evaluation");
+        /* bad input: beside sigma_a (even homogeneous), nothing called */
+        m.sigma_a = het_sigma_a;
+        scene_reset_counts(&sc);
+        CHECK_INT(hrm_solve(&m, 0.5, 6.5, NULL, &r), HRM_ERR_BAD_MEDIUM, "sigma with sigma_a");
+        CHECK(is_error_result(&r) && sc.n_one + sc.n_sa == 0, "sigma with sigma_a: L 0, Tr 1, no call");
+        m.sigma_a = NULL;
+        m.sigma_t = het_sigma_t;
+        m.flags = HRM_MEDIUM_HOMOGENEOUS;
+        CHECK_INT(hrm_transmittance(&m, 0.5, 6.5, NULL, tra, NULL), HRM_ERR_BAD_MEDIUM,
+                  "sigma with sigma_t, homogeneous");
+        m.sigma_t = NULL;
+        m.flags = 0;
+        sc.poison = POISON_SS;
+        sc.poison_value = (double)NAN;
+        m.Li = light_Li(LIGHT_DIR);
+        CHECK_INT(hrm_solve(&m, 0.5, 6.5, NULL, &r), HRM_ERR_CALLBACK_VALUE, "sigma returning NaN");
+        CHECK(is_error_result(&r), "sigma returning NaN: L 0, Tr 1");
+    }
+}
+
 void transmittance_tests(void)
 {
     RUN_GROUP(tr_constant_sigma);
@@ -945,6 +1041,7 @@ void transmittance_tests(void)
     RUN_GROUP(tr_bad_options);
     RUN_GROUP(tr_counts);
     RUN_GROUP(tr_kinked_medium);
+    RUN_GROUP(tr_one_lookup);
     RUN_GROUP(tr_clipped_blob);
     RUN_GROUP(tr_taught_remarch);
 }
