@@ -4,8 +4,9 @@
 #                of the test suite; the fuzz corpus replayed; threads (also
 #                under TSan) and heap allocations (tests/threads.c); ending
 #                with the line "N passed, N failed"
-#   make bench   the single-ray convergence benchmark: tables on the
-#                terminal, files in bench/out/ only (ignored by git)
+#   make bench   the single-ray convergence benchmark and the shadow-ray
+#                benchmark (bench/shadow.c): tables on the terminal, files
+#                in bench/out/ only (ignored by git)
 #   make bench-quick   the same over short ranges (bench/out/quick/)
 #   make bench-snapshot   make bench, then refresh the committed snapshot
 #                bench/results/ (summary.md, timing.md, the figures but
@@ -50,8 +51,15 @@ $(BUILD)/bench: $(BENCH_SRC) $(BENCH_HDR) hrm.h
 # refreshed only by make bench-snapshot: summary.md and the figures are the
 # same on every run of the same build; timing.md is one machine's timings.
 # time.svg (error vs time) stays out of it.
-bench: $(BUILD)/bench
+# shadow rays (bench/shadow.c): hrm_transmittance's lookups for an
+# accuracy of Tr against hand marches and ratio tracking, bench/out/shadow.md
+$(BUILD)/bench_shadow: bench/shadow.c hrm.h
+	@mkdir -p $(BUILD)
+	$(CC) -std=c99 -O2 $(WARN) -I. bench/shadow.c -o $@ -lm
+
+bench: $(BUILD)/bench $(BUILD)/bench_shadow
 	./$(BUILD)/bench --out bench/out
+	./$(BUILD)/bench_shadow bench/out
 
 bench-quick: $(BUILD)/bench
 	./$(BUILD)/bench --quick --out bench/out/quick
@@ -59,7 +67,7 @@ bench-quick: $(BUILD)/bench
 bench-snapshot: bench
 	@mkdir -p bench/results
 	rm -f bench/results/*.svg bench/results/*.md
-	cp bench/out/summary.md bench/out/timing.md bench/results/
+	cp bench/out/summary.md bench/out/timing.md bench/out/shadow.md bench/results/
 	for f in bench/out/*.svg; do \
 	    case $$f in */time.svg) ;; *) cp $$f bench/results/ ;; esac; \
 	done

@@ -1029,6 +1029,186 @@ static void tr_one_lookup(void)
     }
 }
 
+
+/* A slab: sigma_t 4 on [2, 3), 0.1 elsewhere (grey), counted. */
+typedef struct tr_slab {
+    long n;
+} tr_slab;
+
+static void tr_slab_st(void *u, hrm_real t, hrm_real out[NCH])
+{
+    int c;
+    ((tr_slab *)u)->n++;
+    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)(t >= 2 && t < 3 ? 4.0 : 0.1);
+}
+
+static double tr_slab_tau(double a, double b)
+{
+    double lo = a > 2 ? a : 2, hi = b < 3 ? b : 3;
+    return 0.1 * (b - a) + (hi > lo ? 3.9 * (hi - lo) : 0);
+}
+
+/* 12. The shadow-ray estimator: hrm_transmittance without a method
+   (options NULL or method 0), tau by adaptive Simpson in t with an error
+   taken as |S2 - S1|. Its promise: |Tr - exact| <= tr_tol max(Tr,
+   cutoff). Checked against closed forms, as sigma callbacks (one lookup
+   per medium evaluation, counted), in float and double:
+   - the sine medium (sigma_t = a + a/2 sin 2t, three channels, a 0.6 to
+     1.5) on rays of length 0.1 to 6 (Tr 0.9 to 1e-4), tr_tol 1e-2 to
+     1e-4 (and 1e-6 in double): every channel within 1.5 tr_tol max(Tr,
+     cutoff) (the estimate |S2 - S1| is about 15 times S2's error on a
+     smooth medium and the corrected sum is kept, so it over-delivers;
+     1.5 leaves room for tau's error turning into Tr's, exp(x) - 1 >= x,
+     and in float for round-off, 64 eps being the floor of tr_tol);
+   - a constant medium: to round-off, in at most 17 lookups (the first
+     panel, an eighth of the ray, then panels four times as wide);
+   - a slab (a jump up by 40 times and back, its width given as
+     medium.feature): within tr_tol, the jump refined, HRM_OK;
+   - the cut-off: on the sine medium over a ray of optical depth 18 to 45
+     the march stops where Tr falls below it: the Tr returned is below the
+     cut-off, at least the exact one, stats.t_cut < t1 and Tr(t0, t_cut)
+     is within 1.5 tr_tol cutoff of the closed form; fewer lookups than
+     without it, and without it t_cut is t1;
+   - the budget: max_evals medium evaluations, then HRM_WARN_MAX_EVALS
+     with Tr in [0, 1];
+   - bad input: tr_tol or cutoff negative, NaN or infinite, cutoff above
+     1: HRM_ERR_BAD_OPTION, Tr = 1, no callback called. */
+static void tr_shadow_estimator(void)
+{
+    static const double tols[4] = {1e-2, 1e-3, 1e-4, 1e-6};
+    static const double lens[4] = {0.1, 0.7, 2.5, 6.0};
+    int ti, li, c, worse = 0, cases = 0, ntol = real_is_float() ? 3 : 4;
+    double worst = 0;
+    long most = 0;
+    for (ti = 0; ti < ntol; ++ti)
+        for (li = 0; li < 4; ++li) {
+            scene sc;
+            problem p;
+            hrm_medium m;
+            hrm_options o;
+            hrm_real tr[NCH];
+            hrm_stats st;
+            hrm_status status;
+            scene_init(&sc);
+            p = make_problem(&sc, P_HET, 0, LIGHT_NONE);
+            p.sigmas = SIGMA_ONE;
+            m = problem_medium(&p);
+            memset(&o, 0, sizeof o);
+            o.tr_tol = (hrm_real)tols[ti];
+            status = hrm_transmittance(&m, 0.5, (hrm_real)(0.5 + lens[li]), &o, tr, &st);
+            cases++;
+            worse += status != HRM_OK || sc.n_one != st.medium_evals || st.t_cut != (hrm_real)(0.5 + lens[li]);
+            for (c = 0; c < NCH; ++c) {
+                double want = exp(-tau_het(&sc, c, 0.5, 0.5 + lens[li]));
+                double e = fabs((double)tr[c] - want) / want / tols[ti];
+                if (!(e <= worst)) worst = e;
+            }
+            if (ti == 1 && st.medium_evals > most) most = st.medium_evals;
+        }
+    CHECK(worst <= 1.5, "sine medium, %d rays: Tr within 1.5 tr_tol of the closed form (worst %.3g of tr_tol)",
+          cases, worst);
+    CHECK_INT(worse, 0, "sine medium: HRM_OK, one callback per medium evaluation, t_cut = t1");
+    CHECK(most <= 120, "sine medium, tr_tol 1e-3: at most 120 lookups a ray (most %ld)", most);
+    NOTE("shadow-ray estimator, sine medium: worst error %.3g of tr_tol, most lookups at 1e-3: %ld", worst, most);
+    {
+        /* a constant medium through a callback */
+        scene sc;
+        problem p;
+        hrm_medium m;
+        hrm_real tr[NCH];
+        hrm_stats st;
+        double e = 0;
+        scene_init(&sc);
+        scene_set_sine(&sc, 0.8, 0.4);
+        for (c = 0; c < NCH; ++c) sc.b[c] = 0;
+        p = make_problem(&sc, P_HET, 0, LIGHT_NONE);
+        m = problem_medium(&p);
+        CHECK_INT(hrm_transmittance(&m, 1, 5, NULL, tr, &st), HRM_OK, "constant medium: status");
+        for (c = 0; c < NCH; ++c) {
+            double want = exp(-sig_t_het(&sc, c, 0) * 4);
+            if (fabs((double)tr[c] - want) / want > e) e = fabs((double)tr[c] - want) / want;
+        }
+        CHECK(e <= 64 * real_eps(), "constant medium: Tr to round-off (%.3g)", e);
+        CHECK(st.medium_evals <= 17, "constant medium: at most 17 lookups (%ld)", st.medium_evals);
+    }
+    {
+        /* the slab, and the cut-off */
+        tr_slab sl = {0};
+        hrm_medium m;
+        hrm_options o;
+        hrm_real tr[NCH], trc[NCH];
+        hrm_stats st, stc;
+        double want = exp(-tr_slab_tau(0, 6)), e = 0;
+        memset(&m, 0, sizeof m);
+        m.user = &sl;
+        m.sigma_t = tr_slab_st;
+        m.feature = 1; /* the slab's width: the first samples see it */
+        memset(&o, 0, sizeof o);
+        CHECK_INT(hrm_transmittance(&m, 0, 6, &o, tr, &st), HRM_OK, "slab: status");
+        for (c = 0; c < NCH; ++c)
+            if (fabs((double)tr[c] - want) / want > e) e = fabs((double)tr[c] - want) / want;
+        CHECK(e <= 1e-3, "slab: Tr within tr_tol (%.3g), %ld lookups", e, st.medium_evals);
+        /* the cut-off, on the sine medium over [0.5, 30.5] (optical depth
+           18 to 45) */
+        {
+            scene sc;
+            problem p;
+            hrm_medium ms;
+            long without;
+            scene_init(&sc);
+            p = make_problem(&sc, P_HET, 0, LIGHT_NONE);
+            p.sigmas = SIGMA_ONE;
+            ms = problem_medium(&p);
+            CHECK_INT(hrm_transmittance(&ms, 0.5, 30.5, &o, tr, &st), HRM_OK, "thick ray: status");
+            without = st.medium_evals;
+            CHECK(st.t_cut == (hrm_real)30.5, "thick ray without a cut-off: t_cut = t1");
+            o.cutoff = (hrm_real)1e-3;
+            CHECK_INT(hrm_transmittance(&ms, 0.5, 30.5, &o, trc, &stc), HRM_OK, "cut-off: status");
+            CHECK((double)stc.t_cut < 30.5 && (double)stc.t_cut > 0.5, "cut-off: stopped at t_cut = %g", (double)stc.t_cut);
+            for (c = 0; c < NCH; ++c) {
+                double at = exp(-tau_het(&sc, c, 0.5, (double)stc.t_cut)), end = exp(-tau_het(&sc, c, 0.5, 30.5));
+                CHECK((double)trc[c] < 1e-3 && (double)trc[c] >= end,
+                      "cut-off: Tr %g below it and at least the exact %g", (double)trc[c], end);
+                CHECK(fabs((double)trc[c] - at) <= 1.5e-3 * 1e-3,
+                      "cut-off: Tr(t0, t_cut) %g within 1.5 tr_tol cutoff of %g", (double)trc[c], at);
+            }
+            CHECK(stc.medium_evals < without, "cut-off: %ld lookups, %ld without", stc.medium_evals, without);
+        }
+        /* the budget */
+        o.cutoff = 0;
+        o.tr_tol = (hrm_real)1e-5;
+        o.max_evals = 12;
+        CHECK_INT(hrm_transmittance(&m, 0, 6, &o, tr, &st), HRM_WARN_MAX_EVALS, "budget: warning");
+        CHECK(tr[0] >= 0 && tr[0] <= 1, "budget: Tr in [0, 1]");
+    }
+    {
+        /* bad input */
+        static const double bad_tol[3] = {-1, (double)NAN, (double)INFINITY};
+        static const double bad_cut[4] = {-1, (double)NAN, (double)INFINITY, 2};
+        tr_slab sl = {0};
+        hrm_medium m;
+        hrm_options o;
+        hrm_real tr[NCH];
+        hrm_result r;
+        int k, bad = 0;
+        memset(&m, 0, sizeof m);
+        m.user = &sl;
+        m.sigma_t = tr_slab_st;
+        for (k = 0; k < 7; ++k) {
+            memset(&o, 0, sizeof o);
+            if (k < 3)
+                o.tr_tol = (hrm_real)bad_tol[k];
+            else
+                o.cutoff = (hrm_real)bad_cut[k - 3];
+            bad += hrm_transmittance(&m, 0, 6, &o, tr, NULL) != HRM_ERR_BAD_OPTION || tr[0] != 1;
+            o.method = HRM_SIMPSON;
+            bad += hrm_solve(&m, 0, 6, &o, &r) != HRM_ERR_BAD_OPTION;
+        }
+        CHECK_INT(bad, 0, "tr_tol, cutoff negative, NaN or infinite, cutoff above 1: HRM_ERR_BAD_OPTION");
+        CHECK_INT(sl.n, 0, "bad options: no callback called");
+    }
+}
+
 void transmittance_tests(void)
 {
     RUN_GROUP(tr_constant_sigma);
@@ -1042,6 +1222,7 @@ void transmittance_tests(void)
     RUN_GROUP(tr_counts);
     RUN_GROUP(tr_kinked_medium);
     RUN_GROUP(tr_one_lookup);
+    RUN_GROUP(tr_shadow_estimator);
     RUN_GROUP(tr_clipped_blob);
     RUN_GROUP(tr_taught_remarch);
 }
