@@ -230,7 +230,8 @@ static void bench_reference_print(const bench_scene *sc, const bench_reference *
 }
 
 /* One matrix per kind of sweep: rows method x warp (x medium), columns the
-   parameter; value 0: rel_error, 1: evals. */
+   parameter; value 0: rel_error, 1: evals, 2: medium evaluations (the
+   sweeps whose medium is given by callbacks). */
 static void bench_print_matrix(const bench_state *st, int si, int adaptive, int value)
 {
     const bench_config *cfg = &st->cfg;
@@ -241,13 +242,17 @@ static void bench_print_matrix(const bench_state *st, int si, int adaptive, int 
         const bench_sweep *sw = &st->sweeps[i];
         const bench_method *me = &st->methods[sw->method];
         if (sw->scene != si || (me->kind == BENCH_ADAPTIVE) != adaptive) continue;
+        if (value == 2 && sw->medium == BENCH_MEDIUM_CONST) continue;
         if (!any) {
-            printf("  %s\n  %-22s %-11s", adaptive ? (value ? "adaptive methods: evaluations by rtol"
-                                                            : "adaptive methods: achieved rel_error "
-                                                              "by rtol (Munoz 2014 Fig. 4, "
-                                                              "columns 4-5)")
-                                                   : "fixed-step methods: rel_error by N "
-                                                     "(monte-carlo: RMS over seeds)",
+            printf("  %s\n  %-22s %-11s",
+                   value == 2 ? (adaptive ? "adaptive methods: medium (sigma) evaluations by rtol"
+                                          : "fixed-step methods: medium (sigma) evaluations by N")
+                   : adaptive ? (value ? "adaptive methods: evaluations by rtol"
+                                       : "adaptive methods: achieved rel_error "
+                                         "by rtol (Munoz 2014 Fig. 4, "
+                                         "columns 4-5)")
+                              : "fixed-step methods: rel_error by N "
+                                "(monte-carlo: RMS over seeds)",
                    "method", "warp");
             if (media) printf(" %-6s", "medium");
             for (k = 0; k < n; ++k) {
@@ -261,7 +266,8 @@ static void bench_print_matrix(const bench_state *st, int si, int adaptive, int 
         if (media) printf(" %-6s", bench_medium_names[sw->medium]);
         for (k = 0; k < sw->count; ++k) {
             const bench_row *r = &st->rows[sw->first + k];
-            if (value) printf(" %7ld%c", r->stats.evals, bench_flag(r->status));
+            if (value == 2) printf(" %7ld%c", r->stats.medium_evals, bench_flag(r->status));
+            else if (value) printf(" %7ld%c", r->stats.evals, bench_flag(r->status));
             else if (r->status < 0 || !bench_finite(r->rel_error)) printf(" %8s", "error!");
             else printf(" %7.1e%c", r->rel_error, bench_flag(r->status));
         }
@@ -308,6 +314,8 @@ void bench_report_scene(const bench_state *st, int si)
     bench_print_matrix(st, si, 0, 0);
     bench_print_matrix(st, si, 1, 0);
     bench_print_matrix(st, si, 1, 1);
+    bench_print_matrix(st, si, 0, 2);
+    bench_print_matrix(st, si, 1, 2);
     printf("  (* a warning status: the budget of %ld evaluations, h_min or storage ran out, "
            "best estimate shown; ! an error status)\n",
            BENCH_MAX_EVALS);
@@ -877,11 +885,12 @@ static void bench_report_scene_summary(const bench_state *st, int si, const benc
     bench_table t;
     int tg, mi, w, k, nc = 1;
     bench_scene_heading(sc, o);
-    bench_table_init(&t, 3);
+    bench_table_init(&t, 4);
     bench_table_row(&t);
     bench_table_cell(&t, 0, "rel. error");
     bench_table_cell(&t, 1, "fewest evals");
-    bench_table_cell(&t, 2, "method, warp%s (N or rtol)",
+    bench_table_cell(&t, 2, "its medium evals");
+    bench_table_cell(&t, 3, "method, warp%s (N or rtol)",
                      bench_scene_nmedia(st, si) > 1 ? ", medium" : "");
     for (tg = 0; tg < BENCH_TARGETS; ++tg) {
         const bench_row *be = bench_best_row(st, si, bench_targets[tg], 0);
@@ -892,8 +901,9 @@ static void bench_report_scene_summary(const bench_state *st, int si, const benc
             continue;
         }
         bench_table_cell(&t, 1, "%ld", be->stats.evals);
+        bench_table_cell(&t, 2, "%ld", be->stats.medium_evals);
         bench_row_label(st, be, label, sizeof label);
-        bench_table_cell(&t, 2, "%s", label);
+        bench_table_cell(&t, 3, "%s", label);
     }
     bench_table_emit(&t, o);
 
