@@ -3043,11 +3043,19 @@ static void hrm__closed_tr(hrm__ctx *c, hrm_real Tr[HRM__CH])
 static void hrm__nodes(hrm__ctx *c, int N, int kind, hrm_real xi,
                        hrm_real L[HRM__CH], hrm_real tau[HRM__CH])
 {
-    hrm_real w = (c->pb - c->pa) / (hrm_real)N, x = 0, prev_p = c->pa, prev_off = 0;
+    hrm_real w = (c->pb - c->pa) / (hrm_real)N, x = 0, prev_p = c->pa, prev_off = 0, end_off = 0, J;
     hrm_real prev_gs[HRM__CH];
     hrm__pt pt;
     int k, i;
 
+    /* coupled tau: the piece's ends (breakpoints cut the ray into
+       pieces), so that sbar's distance runs from the piece's start to its
+       end, not from t0 or to t1 (which counted the ray before and after
+       the piece again) */
+    if (c->coupled) {
+        hrm__map(c, c->pa, &prev_off, &J);
+        hrm__map(c, c->pb, &end_off, &J);
+    }
     hrm__fill(prev_gs, HRM__CH, 0);
     for (k = 0; k < N; ++k) {
         hrm_real p;
@@ -3076,7 +3084,7 @@ static void hrm__nodes(hrm__ctx *c, int N, int kind, hrm_real xi,
     }
     if (c->coupled)
         for (i = 0; i < HRM__CH; ++i) {
-            tau[i] += prev_gs[i] * (c->pb - prev_p) + c->sbar[i] * (c->off_end - prev_off);
+            tau[i] += prev_gs[i] * (c->pb - prev_p) + c->sbar[i] * (end_off - prev_off);
             if (tau[i] < 0) tau[i] = 0;
         }
 }
