@@ -712,7 +712,12 @@
    round-off, under every warp and for every method. A closed form (the
    homogeneous flag, or the transmittance callback) is always used where
    given. Otherwise:
-   HRM_TAU_DECOUPLED (default)  sigma_t is sampled on its own abscissae,
+   Defaults: decoupled for the adaptive methods, and for the fixed-step
+   ones under a warp or with an exponential fit; coupled for the fixed-step
+   methods without a warp (what N says: N or 2N + 1 medium evaluations,
+   none else) and for hrm_transmittance with a named fixed-step method on
+   a finite ray; coupled always for the analytic march.
+   HRM_TAU_DECOUPLED  sigma_t is sampled on its own abscissae,
        apart from the source samples (decoupled ray marching: Kulla and
        Fajardo 2012; Munoz 2014 s.6), on panels in t that march along the
        ray: Chebyshev interpolation of degree 8, then 16, on each panel,
@@ -745,7 +750,9 @@
        costs as much as a shadow ray, loosen tau_tol or couple.
    HRM_TAU_COUPLED  no extra medium evaluation: tau at each node comes from
        the sigma_t samples at the source nodes at the rule's own order (the
-       papers' way). sigma_t at the first node is integrated over the
+       papers' way; a fixed-step method's error stays of its order, and a
+       medium thinner than the nodes' spacing is missed as the source's
+       detail would be). sigma_t at the first node is integrated over the
        distance in t exactly and only the rest by the rule in u, so a
        constant medium is exact; a varying one under a warp is integrated
        where the warp puts the source samples, which is sparse far from a
@@ -906,8 +913,10 @@ typedef enum hrm_gk_rule {
    Both integrate sigma_t in t over the actual distances between abscissae,
    so a constant sigma_t given through callbacks is exact under any warp. */
 typedef enum hrm_tau_mode {
-    HRM_TAU_DEFAULT = 0,     /* HRM_TAU_DECOUPLED (the analytic march:
-                                HRM_TAU_COUPLED, sigma_t at its samples) */
+    HRM_TAU_DEFAULT = 0,     /* adaptive methods, and fixed-step ones under
+                                a warp or a fit: HRM_TAU_DECOUPLED; the
+                                fixed-step ones otherwise and the analytic
+                                march: HRM_TAU_COUPLED (TRANSMITTANCE) */
     HRM_TAU_DECOUPLED,       /* medium-only samples placed in t by their own
                                 accuracy control (options.tau_tol), apart
                                 from the source samples (Kulla and Fajardo
@@ -1010,7 +1019,8 @@ typedef struct hrm_options {
     hrm_gk_mode gk_mode;/* Gauss-Kronrod. 0: HRM_GK_GLOBAL */
     hrm_gk_rule gk_rule;/* Gauss-Kronrod. 0: HRM_GK_K15 */
     hrm_warp warp;      /* importance sampling. 0: none */
-    hrm_tau_mode tau_mode; /* 0: HRM_TAU_DECOUPLED */
+    hrm_tau_mode tau_mode; /* 0: decoupled (adaptive methods, fixed-step
+                              ones under a warp or a fit), else coupled */
     hrm_real tau_tol;   /* decoupled tau: the error of each optical-depth
                            increment relative to itself (or to 1/64, the
                            larger), weighted by Tr where it occurs, so that
@@ -5152,8 +5162,14 @@ HRM__DEF hrm_options hrm_default_options(hrm_method method)
     o.max_evals = 100000;
     o.control = HRM_CONTROL_PI;
     o.gk_mode = HRM_GK_GLOBAL;
-    /* the analytic march takes sigma_t at its samples, as renderers do */
-    o.tau_mode = o.method == HRM_ANALYTIC_MARCH ? HRM_TAU_COUPLED : HRM_TAU_DECOUPLED;
+    /* the analytic march takes sigma_t at its samples, as renderers do;
+       the other fixed-step methods are resolved with the warp (coupled
+       without one: hrm__resolve), the adaptive ones decoupled */
+    o.tau_mode = o.method == HRM_ANALYTIC_MARCH ? HRM_TAU_COUPLED
+               : (int)o.method > 0 && (int)o.method < (int)HRM_METHOD_COUNT &&
+                         hrm__methods[o.method].family <= HRM__FIXED_IVP
+                   ? HRM_TAU_DEFAULT
+                   : HRM_TAU_DECOUPLED;
     return o;
 }
 
@@ -5169,7 +5185,7 @@ static long hrm__piece_cost(const hrm_options *o)
          : 0L;
 }
 
-static hrm_status hrm__resolve(const hrm_options *in, hrm_options *o)
+static hrm_status hrm__resolve(const hrm_options *in, hrm_options *o, int tau_in_t)
 {
     hrm_options d = hrm_default_options(in ? in->method : HRM_METHOD_DEFAULT);
     const hrm__method_info *mi;
@@ -5205,6 +5221,14 @@ static hrm_status hrm__resolve(const hrm_options *in, hrm_options *o)
     if (o->gk_rule == HRM_GK_RULE_DEFAULT) o->gk_rule = HRM_GK_K15;
     if ((int)o->tau_mode < 0 || (int)o->tau_mode > (int)HRM_TAU_COUPLED) return HRM_ERR_BAD_OPTION;
     if (o->tau_mode == HRM_TAU_DEFAULT) o->tau_mode = d.tau_mode;
+    /* fixed-step methods: tau from their own nodes (what N says, in sigma
+       too) without a warp or a fit, and where tau alone is integrated in
+       t (tau_in_t: hrm_transmittance on a finite ray, which ignores the
+       warp); the layer under a warp, which spaces the nodes for a light,
+       not for the medium */
+    if (o->tau_mode == HRM_TAU_DEFAULT)
+        o->tau_mode = (o->warp.kind == HRM_WARP_NONE || tau_in_t) && !o->exponential ? HRM_TAU_COUPLED
+                                                                                    : HRM_TAU_DECOUPLED;
     if (!(HRM__FINITE(o->rtol) && o->rtol >= 0 && HRM__FINITE(o->atol) && o->atol >= 0 &&
           HRM__FINITE(o->h_min) && o->h_min >= 0 && HRM__FINITE(o->h_max) && o->h_max >= 0 &&
           HRM__FINITE(o->h0) && o->h0 >= 0 && o->max_evals >= 0 &&
@@ -5975,7 +5999,7 @@ static hrm_status hrm__run(const hrm_medium *m, hrm_real t0, hrm_real t1,
     hrm__fill(err, HRM__CH, -1);
     /* t1 = +inf is valid under a warp that maps it to a finite end. */
     if (!HRM__FINITE(t0) || !(t1 >= t0) || (!HRM__FINITE(t1) && t0 == t1)) return HRM_ERR_BAD_INTERVAL;
-    st = hrm__resolve(in, &o);
+    st = hrm__resolve(in, &o, tr_only && HRM__FINITE(t1));
     if (st != HRM_OK) return st;
     st = hrm__setup(&c, &layer, m, t0, t1, &o, tr_only);
     *stats = c.stats;

@@ -352,6 +352,7 @@ static void tr_transmittance_layer(void)
         hrm_stats st, sw;
         double floor_ = 16 * real_eps() * (1 + tr_tau(&p, 0, 10));
         if (tol < 100 * real_eps()) break;
+        o.tau_mode = HRM_TAU_DECOUPLED; /* the layer (a fixed-step method's default is coupled) */
         o.tau_tol = (hrm_real)tol;
         CHECK_INT(hrm_transmittance(&ms, 0, 10, &o, Tr, &st), HRM_OK, "tau_tol %g: status", tol);
         for (c = 0; c < NCH; ++c)
@@ -363,6 +364,7 @@ static void tr_transmittance_layer(void)
         prev = st.medium_evals;
         for (w = 1; w < 4; ++w) {
             o = tr_options(HRM_SIMPSON, 8, 0, w, &p);
+            o.tau_mode = HRM_TAU_DECOUPLED;
             o.tau_tol = (hrm_real)tol;
             CHECK_INT(hrm_transmittance(&ms, 0, 10, &o, Tw, &sw), HRM_OK, "%s: status", tr_warp_names[w]);
             for (c = 0; c < NCH; ++c)
@@ -435,6 +437,7 @@ static void tr_thin_layer(void)
         hrm_medium m = tr_make(&p, 0, 0);
         hrm_options o = hrm_default_options(HRM_SIMPSON);
         hrm_real Tr[NCH];
+        o.tau_mode = HRM_TAU_DECOUPLED; /* the layer */
         o.tau_tol = (hrm_real)tol;
         CHECK_INT(hrm_transmittance(&m, 0, 100, &o, Tr, 0), HRM_OK, "thin layer at 50: status");
         for (c = 0; c < NCH; ++c)
