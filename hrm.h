@@ -772,15 +772,15 @@
        |Tr - exact| <= tr_tol max(Tr, cutoff)      (tr_tol 0: 1e-3)
    where its error estimates hold (the difference of Simpson on a panel
    and on its halves, taken whole: in noise the two miss the same fine
-   structure). The first panel is an eighth of the ray, or 4 medium.feature
-   where given: a slab between its first samples is not seen (give
-   feature). cutoff > 0 stops the march where every channel's Tr falls
+   structure). The first panel is an eighth of the ray, and where
+   medium.feature is given no panel is wider than it: a slab between its
+   first samples is not seen (give feature). cutoff > 0 stops the march where every channel's Tr falls
    below it: the Tr returned is the one reached there, at least the exact
    Tr(t0, t1), and stats.t_cut says where. Cost: lookups of sigma_t only
    (one per medium evaluation); bench/results/shadow.md measures them and
    the share of rays beyond tr_tol on a smooth medium, fBm smoke and a
    trilinear voxel grid (where kinks between samples escape the estimate
-   on a few percent of the rays). A named method integrates sigma_t as
+   on some rays). A named method integrates sigma_t as
    hrm_solve does (above).
 
    ==========================================================================
@@ -5888,11 +5888,12 @@ static hrm_status hrm__finish(hrm__ctx *c, const hrm_options *o, const hrm_real 
    <= tr_tol max(1, cutoff / Tr(t1)), and |Tr - exact| <= tr_tol max(Tr,
    cutoff) to first order); else halved (its left half's samples kept).
    After a panel the next width is chosen from the error's h^5 (a factor
-   1/2 to 4). A panel's share is at least 1/64 of the tolerance (a jump
-   of sigma: see below). The first panel is an eighth of the ray, or 4
-   feature widths where medium.feature is given (samples at its spacing),
-   so that a structure is seen before any panel is accepted; a slab
-   between the first samples is not (as for every method: give feature). Stops where every
+   1/2 to 4). A panel's share is at least 1/64 of the tolerance while half
+   the tolerance set aside for such floors lasts (a jump of sigma: see
+   below). The first panel is an eighth of the ray; where medium.feature
+   is given, no panel is wider than it (samples at half its spacing), so
+   that a structure is seen before any panel is accepted; a slab between
+   the first samples is not (as for every method: give feature). Stops where every
    channel's Tr is below the cut-off or underflows. At h_min (64 eps of
    the ray's reach) or past max_evals medium evaluations panels are
    accepted as they are, with HRM_WARN_H_MIN or HRM_WARN_MAX_EVALS where
@@ -5901,17 +5902,17 @@ static void hrm__shadow_march(hrm__ctx *c, const hrm_options *o, hrm_real tau[HR
 {
     hrm_real f[5][HRM__CH]; /* sigma_t at a + h (0, 1/4, 1/2, 3/4, 1) */
     hrm_real T = c->T, a = 0, h = T, hmin, cap = -HRM_LOG(HRM__TINY);
-    hrm_real feature = c->m->feature, esum = 0, trmax = 1;
+    hrm_real feature = c->m->feature, esum = 0, trmax = 1, floor_left = HRM__R(0.5);
     int i, have = 0;
     hrm_status short_of = HRM_OK; /* a panel accepted beyond its share */
     hmin = 64 * HRM__EPS * (HRM_FABS(c->t0) > T ? HRM_FABS(c->t0) : T);
     h = T / 8;
-    if (feature > 0 && 4 * feature < h) h = 4 * feature;
+    if (feature > 0 && feature < h) h = feature;
     hrm__fill(tau, HRM__CH, 0);
     c->stats.t_cut = c->t1;
     hrm__sigma_t_at(c, 0, 0, f[0]);
     while (a < T && c->status == HRM_OK) {
-        hrm_real err = 0, allow, s1[HRM__CH], s2[HRM__CH], fac;
+        hrm_real err = 0, allow, share, s1[HRM__CH], s2[HRM__CH], fac;
         int budget = c->stats.medium_evals >= o->max_evals;
         if (!(a + h < T) || T - (a + h) < hmin) h = T - a;
         if (!have) {
@@ -5931,11 +5932,13 @@ static void hrm__shadow_march(hrm__ctx *c, const hrm_options *o, hrm_real tau[HR
         for (i = 0, trmax = 0; i < HRM__CH; ++i)
             if (HRM_EXP(-tau[i]) > trmax) trmax = HRM_EXP(-tau[i]);
         /* a panel's share of the tolerance: its share of the ray, or
-           1/64 of it, the larger: a jump of sigma has an error that
-           shrinks only like h, so that the K panels narrower than 1/64
-           that refine it end the march within tr_tol (1 + K/64) */
-        allow = o->tr_tol * (o->cutoff > trmax ? o->cutoff / trmax : 1) *
-                (h / T > HRM__R(1) / 64 ? h / T : HRM__R(1) / 64);
+           1/64 of the tolerance while the half of it set aside for such
+           floors lasts: a jump of sigma has an error that shrinks only
+           like h, which the floor ends; a medium with a kink every few
+           samples (a voxel grid) would otherwise add a 1/64 per kink */
+        share = h / T;
+        if (share < HRM__R(1) / 64 && HRM__R(1) / 64 - share <= floor_left) share = HRM__R(1) / 64;
+        allow = o->tr_tol * (o->cutoff > trmax ? o->cutoff / trmax : 1) * share;
         if (!(err <= allow) && h > hmin && !budget) {
             /* rejected: the left half, its samples kept */
             memcpy(f[4], f[2], sizeof f[4]);
@@ -5946,6 +5949,7 @@ static void hrm__shadow_march(hrm__ctx *c, const hrm_options *o, hrm_real tau[HR
             continue;
         }
         if (!(err <= allow)) short_of = budget ? HRM_WARN_MAX_EVALS : HRM_WARN_H_MIN;
+        if (share > h / T) floor_left -= share - h / T;
         esum += err;
         for (i = 0; i < HRM__CH; ++i) {
             hrm_real d = s2[i] + (s2[i] - s1[i]) / 15;
@@ -5957,6 +5961,11 @@ static void hrm__shadow_march(hrm__ctx *c, const hrm_options *o, hrm_real tau[HR
         have = 0;
         fac = err > 0 ? HRM__R(0.9) * HRM_SQRT(HRM_SQRT(allow / err)) : 4;
         h *= fac < HRM__R(0.5) ? HRM__R(0.5) : fac > 4 ? 4 : fac;
+        /* never wider than the medium's feature: two features in one panel
+           can cancel in S2 - S1 while both rules miss them (a trilinear
+           grid: 4.5% of shadow rays beyond tr_tol with panels grown to 4
+           voxels, 0.6% with at most one) */
+        if (feature > 0 && h > feature) h = feature;
         /* every channel below the cut-off, or underflowed: stop */
         for (i = 0; i < HRM__CH; ++i)
             if (!(tau[i] >= cap || (o->cutoff > 0 && HRM_EXP(-tau[i]) < o->cutoff))) break;
