@@ -1057,10 +1057,15 @@ typedef struct hrm_options {
        shadow-ray estimator (SHADOW RAYS in the manual). */
     hrm_real tr_tol;    /* the error of Tr relative to max(Tr, cutoff).
                            0: 1e-3. Typical: 1e-2 (previews) to 1e-4 */
-    hrm_real cutoff;    /* opacity cut-off: the march stops once Tr (every
-                           channel) falls below it, and returns the Tr
-                           reached there (stats.t_cut says where). 0: none.
-                           Typical: 1e-3 to 1e-4. Within [0, 1] */
+    hrm_real cutoff;    /* opacity cut-off: hrm_transmittance's estimator
+                           stops once Tr (every channel) falls below it, and
+                           returns the Tr reached there; hrm_solve, where Tr
+                           has a closed form (homogeneous, or the
+                           transmittance callback), solves up to there, Tr
+                           of the whole ray, the remainder estimated in
+                           result.error (sigma callbacks: no cut).
+                           stats.t_cut says where. 0: none. Typical: 1e-3
+                           to 1e-4. Within [0, 1] */
 } hrm_options;
 
 typedef struct hrm_stats {
@@ -1097,6 +1102,12 @@ HRM_API hrm_options hrm_default_options(hrm_method method);
 
 /* Solve along one ray from t0 to t1 (t0 <= t1, both finite).
    medium, result: required.  options: NULL means all defaults.
+   options->cutoff > 0 and a closed-form Tr (homogeneous, or the
+   transmittance callback): early ray termination where every channel's
+   Tr falls below it (stats.t_cut); L covers [t0, t_cut], Tr the whole
+   ray, and an adaptive method's result.error adds the remainder's
+   estimate, Tr(t0, t_cut) - Tr(t0, t1) times the mean S / sigma_t of the
+   part solved. With sigma callbacks the cut-off is not applied.
    Returns HRM_OK, a warning (result holds the best estimate) or an error
    (result holds L = 0, Tr = 1, and the stats counted so far). */
 HRM_API hrm_status hrm_solve(const hrm_medium *medium, hrm_real t0, hrm_real t1,
@@ -6046,11 +6057,54 @@ static hrm_status hrm__run(const hrm_medium *m, hrm_real t0, hrm_real t1,
     return st;
 }
 
+/* Early ray termination (options.cutoff, where Tr has a closed form):
+   where every channel's Tr(t0, t) falls below the cut-off, into *t_cut
+   (t1 where it does not, or without a closed form), and Tr(t0, t1) into
+   tr_end. A homogeneous medium in closed form; a transmittance callback
+   by bisection (20 calls and one for the whole ray, returned). A value
+   that is not a number leaves the ray whole (the solve reports it). */
+static long hrm__cut_point(const hrm_medium *m, hrm_real t0, hrm_real t1, hrm_real cutoff,
+                           hrm_real *t_cut, hrm_real tr_end[HRM__CH])
+{
+    hrm_real tr[HRM__CH], lo = t0, hi = t1, mx, smin = HRM__R(HUGE_VAL);
+    long calls = 0;
+    int i, k;
+    *t_cut = t1;
+    if (m->flags & HRM_MEDIUM_HOMOGENEOUS) {
+        for (i = 0; i < HRM__CH; ++i) {
+            hrm_real st = m->const_sigma_a[i] + m->const_sigma_s[i];
+            if (!(HRM__FINITE(st) && st >= 0)) return 0;
+            if (st < smin) smin = st;
+            tr_end[i] = HRM_EXP(-st * (t1 - t0));
+        }
+        if (smin > 0 && t0 + -HRM_LOG(cutoff) / smin < t1) *t_cut = t0 + -HRM_LOG(cutoff) / smin;
+        return 0;
+    }
+    if (!m->transmittance || !HRM__FINITE(t1) || m->sigma) return 0;
+    m->transmittance(m->user, t0, t1, tr_end);
+    calls++;
+    for (i = 0, mx = 0; i < HRM__CH; ++i) mx = tr_end[i] > mx || tr_end[i] != tr_end[i] ? tr_end[i] : mx;
+    if (!(mx < cutoff)) return calls;
+    for (k = 0; k < 20; ++k) {
+        hrm_real mid = lo + (hi - lo) / 2;
+        m->transmittance(m->user, t0, mid, tr);
+        calls++;
+        for (i = 0, mx = 0; i < HRM__CH; ++i) mx = tr[i] > mx || tr[i] != tr[i] ? tr[i] : mx;
+        if (mx < cutoff) hi = mid;
+        else if (mx >= cutoff) lo = mid;
+        else return calls;
+    }
+    *t_cut = hi;
+    return calls;
+}
+
 HRM__DEF hrm_status hrm_solve(const hrm_medium *medium, hrm_real t0, hrm_real t1,
                               const hrm_options *options, hrm_result *result)
 {
     hrm_result r;
     hrm_status st;
+    hrm_real tc = t1, tr_end[HRM__CH];
+    long calls = 0;
     if (!result) return HRM_ERR_NULL_ARGUMENT;
     if (!medium) {
         memset(result, 0, sizeof *result);
@@ -6058,9 +6112,48 @@ HRM__DEF hrm_status hrm_solve(const hrm_medium *medium, hrm_real t0, hrm_real t1
         hrm__fill(result->error, HRM__CH, -1);
         return HRM_ERR_NULL_ARGUMENT;
     }
-    /* Work on a local copy: result may alias nothing we read, and a failed
-       solve leaves exactly the defined error result. */
-    st = hrm__run(medium, t0, t1, options, 0, r.L, r.Tr, r.error, &r.stats, &r.njumps, r.jumps);
+    if (options && options->cutoff > 0 && options->cutoff <= 1 && HRM__FINITE(t0) && t1 > t0) {
+        /* early ray termination, on valid input only (bad input is the
+           solve's to report, before any callback): a list of breakpoints
+           loses those beyond the cut */
+        hrm_options chk;
+        int i, ok = options->nbreaks >= 0 && options->nbreaks <= HRM_MAX_BREAKS &&
+                    (options->nbreaks == 0 || options->breaks) && hrm__resolve(options, &chk, 0) == HRM_OK &&
+                    hrm__warp_valid(&options->warp) == HRM_OK &&
+                    !(medium->flags & ~(HRM_MEDIUM_HOMOGENEOUS | HRM_EMISSION_PER_LENGTH)) &&
+                    HRM__FINITE(medium->feature) && medium->feature >= 0 &&
+                    !(medium->sigma && (medium->sigma_a || medium->sigma_s || medium->sigma_t));
+        for (i = 0; ok && i < options->nbreaks; ++i)
+            ok = HRM__FINITE(options->breaks[i]) && options->breaks[i] >= t0 && options->breaks[i] <= t1 &&
+                 (i == 0 || options->breaks[i] > options->breaks[i - 1]);
+        if (ok) calls = hrm__cut_point(medium, t0, t1, options->cutoff, &tc, tr_end);
+    }
+    if (tc < t1 && tc > t0) {
+        hrm_options o = *options;
+        hrm_real brk[HRM_MAX_BREAKS];
+        int i, n = 0;
+        for (i = 0; i < o.nbreaks; ++i)
+            if (o.breaks[i] < tc) brk[n++] = o.breaks[i];
+        o.breaks = n ? brk : NULL;
+        o.nbreaks = n;
+        st = hrm__run(medium, t0, tc, &o, 0, r.L, r.Tr, r.error, &r.stats, &r.njumps, r.jumps);
+        r.stats.medium_evals += calls;
+        if (st >= 0) {
+            /* Tr of the whole ray; the remainder estimated with the mean
+               S / sigma_t of the part solved, L / (1 - Tr(t0, t_cut)), over
+               Tr(t0, t_cut) - Tr(t0, t1), in the error estimate */
+            for (i = 0; i < HRM__CH; ++i) {
+                hrm_real a = r.Tr[i], rem = 1 - a > 0 ? r.L[i] / (1 - a) * (a - tr_end[i]) : 0;
+                if (r.error[i] >= 0 && rem > 0) r.error[i] += rem;
+                r.Tr[i] = tr_end[i];
+            }
+            r.stats.t_cut = tc;
+        }
+    } else {
+        /* Work on a local copy: result may alias nothing we read, and a
+           failed solve leaves exactly the defined error result. */
+        st = hrm__run(medium, t0, t1, options, 0, r.L, r.Tr, r.error, &r.stats, &r.njumps, r.jumps);
+    }
     *result = r;
     return st;
 }
