@@ -1037,7 +1037,8 @@ typedef struct hrm_options {
                            change nothing */
     int nbreaks;
     int find_jumps;     /* 0 (the default): every adaptive method scans
-                           sigma (callbacks) for jumps before it runs, and
+                           sigma (callbacks; not where a transmittance
+                           callback gives Tr) for jumps before it runs, and
                            nested Simpson and global Gauss-Kronrod also
                            locate a jump of the source that refinement
                            does not shrink (a shadow's edge); each jump is
@@ -5329,7 +5330,8 @@ static hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, const hrm_medium *m, 
                      (o->method == HRM_GAUSS_KRONROD && o->gk_mode == HRM_GK_GLOBAL));
     /* the medium scan: adaptive methods by default, fixed-step ones when
        asked (find_jumps = 1; their cost is otherwise N's alone) */
-    c->scan = (o->find_jumps == 1 || (o->find_jumps == 0 && c->use_memo)) && !c->homog && (m->sigma_a || m->sigma_s || m->sigma_t || m->sigma) && t_fine;
+    c->scan = (o->find_jumps == 1 || (o->find_jumps == 0 && c->use_memo)) && !c->homog && !m->transmittance &&
+              (m->sigma_a || m->sigma_s || m->sigma_t || m->sigma) && t_fine;
     c->gk = o->gk_rule == HRM_GK_K7 ? &hrm__k7 : &hrm__k15;
     c->rough_left = HRM__JUMP;
     if (c->homog) {
@@ -5739,7 +5741,10 @@ static int hrm__locate_sigma_jump(hrm__ctx *c, hrm_real a, hrm_real b, hrm_real 
    panels must then reproduce: a feature a few scan points wide is not
    lost between the samples of its first panel (9 over the whole ray where
    sigma_t is 0 at t0). What lies between two neighbours unseen stays
-   unseen. */
+   unseen. Not where a transmittance callback gives Tr: no layer to
+   teach, and the source's own search (nested Simpson, global
+   Gauss-Kronrod) or step control sees what sigma_s does to it (33 sigma
+   calls a solve saved). */
 #define HRM__SCAN 32
 #define HRM__SCAN_MAX 4096
 static void hrm__scan_medium(hrm__ctx *c)

@@ -992,6 +992,32 @@ static void tr_one_lookup(void)
     CHECK_INT(diff, 0, "medium.sigma: the same L, Tr and counts as sigma_a and sigma_s (%d solves)", cases);
     CHECK_INT(miscount, 0, "medium.sigma: one call per medium evaluation, no other coefficient call");
     CHECK_INT(more, 0, "medium.sigma: never more calls than sigma_a and sigma_s (in all: %ld, %ld)", one, sep);
+    {
+        /* where a transmittance callback gives Tr there is no medium
+           scan: one medium evaluation per source evaluation (the
+           callback's Tr(t0, t1) besides) for every adaptive method */
+        int worse = 0;
+        for (mi = 0; mi < N_METHODS_ALL; ++mi) {
+            scene sc;
+            problem p;
+            hrm_options o = hrm_default_options(every_method[mi]);
+            hrm_result a;
+            if (!is_adaptive(every_method[mi])) continue;
+            scene_init(&sc);
+            p = make_problem(&sc, P_HET, 0, LIGHT_DIR);
+            p.tr = 1;
+            p.sigmas = SIGMA_ONE;
+            o.rtol = (hrm_real)1e-4;
+            CHECK(solve_opt(&p, 0.5, 6.5, &o, &a) >= 0, "%s, transmittance callback: status",
+                  hrm_method_name(every_method[mi]));
+            if (sc.n_one > a.stats.evals) {
+                worse++;
+                NOTE("%s: %ld sigma calls for %ld evaluations", hrm_method_name(every_method[mi]), sc.n_one,
+                     a.stats.evals);
+            }
+        }
+        CHECK_INT(worse, 0, "transmittance callback: no more sigma calls than source evaluations (no scan)");
+    }
     NOTE("one lookup per abscissa: %ld calls of medium.sigma, %ld of sigma_a and sigma_s", one, sep);
     {
         scene sc;
