@@ -1077,6 +1077,16 @@ static double tr_slab_tau(double a, double b)
     return 0.1 * (b - a) + (hi > lo ? 3.9 * (hi - lo) : 0);
 }
 
+/* The sine medium of the scenes (scene_init) as one sigma callback. */
+static hrm_medium tr_sine_one(scene *sc)
+{
+    problem p;
+    scene_init(sc);
+    p = make_problem(sc, P_HET, 0, LIGHT_NONE);
+    p.sigmas = SIGMA_ONE;
+    return problem_medium(&p);
+}
+
 /* 12. The shadow-ray estimator: hrm_transmittance without a method
    (options NULL or method 0), tau by adaptive Simpson in t with an error
    taken as |S2 - S1|. Its promise: |Tr - exact| <= tr_tol max(Tr,
@@ -1112,16 +1122,11 @@ static void tr_shadow_estimator(void)
     for (ti = 0; ti < ntol; ++ti)
         for (li = 0; li < 4; ++li) {
             scene sc;
-            problem p;
-            hrm_medium m;
+            hrm_medium m = tr_sine_one(&sc);
             hrm_options o;
             hrm_real tr[NCH];
             hrm_stats st;
             hrm_status status;
-            scene_init(&sc);
-            p = make_problem(&sc, P_HET, 0, LIGHT_NONE);
-            p.sigmas = SIGMA_ONE;
-            m = problem_medium(&p);
             memset(&o, 0, sizeof o);
             o.tr_tol = (hrm_real)tols[ti];
             status = hrm_transmittance(&m, 0.5, (hrm_real)(0.5 + lens[li]), &o, tr, &st);
@@ -1181,13 +1186,8 @@ static void tr_shadow_estimator(void)
            18 to 45) */
         {
             scene sc;
-            problem p;
-            hrm_medium ms;
+            hrm_medium ms = tr_sine_one(&sc);
             long without;
-            scene_init(&sc);
-            p = make_problem(&sc, P_HET, 0, LIGHT_NONE);
-            p.sigmas = SIGMA_ONE;
-            ms = problem_medium(&p);
             CHECK_INT(hrm_transmittance(&ms, 0.5, 30.5, &o, tr, &st), HRM_OK, "thick ray: status");
             without = st.medium_evals;
             CHECK(st.t_cut == (hrm_real)30.5, "thick ray without a cut-off: t_cut = t1");
