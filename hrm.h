@@ -774,14 +774,14 @@
    and on its halves, taken whole: in noise the two miss the same fine
    structure). The first panel is an eighth of the ray, and where
    medium.feature is given no panel is wider than it: a slab between its
-   first samples is not seen (give feature). cutoff > 0 stops the march where every channel's Tr falls
-   below it: the Tr returned is the one reached there, at least the exact
-   Tr(t0, t1), and stats.t_cut says where. Cost: lookups of sigma_t only
-   (one per medium evaluation); bench/results/shadow.md measures them and
-   the share of rays beyond tr_tol on a smooth medium, fBm smoke and a
-   trilinear voxel grid (where kinks between samples escape the estimate
-   on some rays). A named method integrates sigma_t as
-   hrm_solve does (above).
+   first samples is not seen (give feature). cutoff > 0 stops the march
+   where every channel's Tr falls below it: the Tr returned is the one
+   reached there, at least the exact Tr(t0, t1), and stats.t_cut says
+   where. Cost: lookups of sigma_t only (one per medium evaluation);
+   bench/results/shadow.md measures them and the share of rays beyond
+   tr_tol on a smooth medium, fBm smoke and a trilinear voxel grid (where
+   kinks between samples escape the estimate on some rays). A named method
+   integrates sigma_t as hrm_solve does (above).
 
    ==========================================================================
    WHAT hrm DOES NOT DO
@@ -3387,23 +3387,11 @@ static void hrm__efit_panel(const hrm__ctx *c, const hrm__efit *F, const hrm__pt
    over a step the source is taken constant and the extinction integrated
    exactly: dL = Tr(a) S dt (1 - exp(-dtau)) / dtau. dtau is sigma_t at
    the sample times dt (tau coupled, the default), or tau's closed form or
-   the layer's between the step's ends. Without a warp, and under the
-   distance or a user warp (which only place the steps, equal in u), S is
-   the sample's, constant over the step in t: exact in a homogeneous
-   medium with a constant source at any N wherever the steps lie (the
-   distance warp's dt/du is the 1 / Tr of sigma_ref, which the step's
-   extinction already integrates exactly), and never above
-   sup(S / sigma_t) (1 - Tr) however thick the medium. Under the
-   equiangular warp S dt/du (gq) is held constant over the step in u, as
-   that warp's sampling weighs its point light (Kulla and Fajardo 2012,
-   the production equiangular march): S dt = gq du, S the source's mean
-   over the step in t. Exact where S dt/du is constant in u and the medium
-   thin (the warp's light), second order once the steps resolve dt/du; a
-   constant source is not exact then (gq du is the midpoint rule for
-   S dt), and the bound holds while the midpoint's dt/du du is at most dt
-   (dt/du convex, the sample at the midpoint): a jittered sample can
-   exceed it, as a stratified estimator's does. The manual's IMPORTANCE
-   SAMPLING measures both. */
+   the layer's between the step's ends. S dt is the sample's S times dt
+   (no warp, distance and user warps: exact for a constant S / sigma_t,
+   never above sup(S / sigma_t) (1 - Tr)), or under the equiangular warp
+   gq du, S dt/du held constant over the step in u (Kulla and Fajardo
+   2012); IMPORTANCE SAMPLING in the manual says what each holds. */
 static void hrm__march(hrm__ctx *c, int N, hrm_real xi, hrm_real L[HRM__CH],
                        hrm_real tau[HRM__CH])
 {
@@ -5918,7 +5906,10 @@ static void hrm__shadow_march(hrm__ctx *c, const hrm_options *o, hrm_real tau[HR
 {
     hrm_real f[5][HRM__CH]; /* sigma_t at a + h (0, 1/4, 1/2, 3/4, 1) */
     hrm_real T = c->T, a = 0, h = T, hmin, cap = -HRM_LOG(HRM__TINY);
-    hrm_real feature = c->m->feature, esum = 0, trmax = 1, floor_left = HRM__R(0.5);
+    hrm_real feature = c->m->feature, esum = 0, floor_left = HRM__R(0.5);
+    /* the thinnest channel: its tau, and the tolerance's factor max(1,
+       cutoff / Tr) there, updated once a panel (one exp) */
+    hrm_real taumin = 0, loose = 1, tau_cut = o->cutoff > 0 ? -HRM_LOG(o->cutoff) : HRM__R(HUGE_VAL);
     int i, have = 0;
     hrm_status short_of = HRM_OK; /* a panel accepted beyond its share */
     hmin = 64 * HRM__EPS * (HRM_FABS(c->t0) > T ? HRM_FABS(c->t0) : T);
@@ -5945,8 +5936,6 @@ static void hrm__shadow_march(hrm__ctx *c, const hrm_options *o, hrm_real tau[HR
             e = HRM_FABS(s2[i] - s1[i]);
             if (!(e <= err)) err = e; /* NaN or inf: the largest */
         }
-        for (i = 0, trmax = 0; i < HRM__CH; ++i)
-            if (HRM_EXP(-tau[i]) > trmax) trmax = HRM_EXP(-tau[i]);
         /* a panel's share of the tolerance: its share of the ray, or
            1/64 of the tolerance while the half of it set aside for such
            floors lasts: a jump of sigma has an error that shrinks only
@@ -5954,7 +5943,7 @@ static void hrm__shadow_march(hrm__ctx *c, const hrm_options *o, hrm_real tau[HR
            samples (a voxel grid) would otherwise add a 1/64 per kink */
         share = h / T;
         if (share < HRM__R(1) / 64 && HRM__R(1) / 64 - share <= floor_left) share = HRM__R(1) / 64;
-        allow = o->tr_tol * (o->cutoff > trmax ? o->cutoff / trmax : 1) * share;
+        allow = o->tr_tol * loose * share;
         if (!(err <= allow) && h > hmin && !budget) {
             /* rejected: the left half, its samples kept */
             memcpy(f[4], f[2], sizeof f[4]);
@@ -5970,7 +5959,10 @@ static void hrm__shadow_march(hrm__ctx *c, const hrm_options *o, hrm_real tau[HR
         for (i = 0; i < HRM__CH; ++i) {
             hrm_real d = s2[i] + (s2[i] - s1[i]) / 15;
             tau[i] += d > 0 ? d : 0;
+            if (i == 0 || tau[i] < taumin) taumin = tau[i];
         }
+        loose = o->cutoff > 0 && taumin > tau_cut - 1 ? o->cutoff / HRM_EXP(-taumin) : 1;
+        if (loose < 1) loose = 1;
         c->stats.steps++;
         a += h;
         memcpy(f[0], f[4], sizeof f[0]);
@@ -5983,9 +5975,7 @@ static void hrm__shadow_march(hrm__ctx *c, const hrm_options *o, hrm_real tau[HR
            voxels, 0.6% with at most one) */
         if (feature > 0 && h > feature) h = feature;
         /* every channel below the cut-off, or underflowed: stop */
-        for (i = 0; i < HRM__CH; ++i)
-            if (!(tau[i] >= cap || (o->cutoff > 0 && HRM_EXP(-tau[i]) < o->cutoff))) break;
-        if (i == HRM__CH && a < T) {
+        if ((taumin >= cap || taumin > tau_cut) && a < T) {
             c->stats.t_cut = hrm__abscissa(c, a);
             break;
         }
@@ -5993,10 +5983,7 @@ static void hrm__shadow_march(hrm__ctx *c, const hrm_options *o, hrm_real tau[HR
     /* a panel past h_min or the budget: a warning where the estimates
        add up to more than the tolerance (not where a jump refined to
        h_min is still within it) */
-    for (i = 0, trmax = 0; i < HRM__CH; ++i)
-        if (HRM_EXP(-tau[i]) > trmax) trmax = HRM_EXP(-tau[i]);
-    if (short_of != HRM_OK && !(esum <= o->tr_tol * (o->cutoff > trmax ? o->cutoff / trmax : 1)))
-        hrm__warn(c, short_of);
+    if (short_of != HRM_OK && !(esum <= o->tr_tol * loose)) hrm__warn(c, short_of);
 }
 
 /* The one solve behind hrm_solve and hrm_transmittance (tr_only: no
@@ -6085,7 +6072,7 @@ static long hrm__cut_point(const hrm_medium *m, hrm_real t0, hrm_real t1, hrm_re
         if (smin > 0 && t0 + -HRM_LOG(cutoff) / smin < t1) *t_cut = t0 + -HRM_LOG(cutoff) / smin;
         return 0;
     }
-    if (!m->transmittance || !HRM__FINITE(t1) || m->sigma) return 0;
+    if (!m->transmittance || !HRM__FINITE(t1)) return 0;
     m->transmittance(m->user, t0, t1, tr_end);
     calls++;
     for (i = 0, mx = 0; i < HRM__CH; ++i) mx = tr_end[i] > mx || tr_end[i] != tr_end[i] ? tr_end[i] : mx;

@@ -1142,6 +1142,10 @@ static void tr_shadow_estimator(void)
     CHECK(worst <= 1.5, "sine medium, %d rays: Tr within 1.5 tr_tol of the closed form (worst %.3g of tr_tol)",
           cases, worst);
     CHECK_INT(worse, 0, "sine medium: HRM_OK, one callback per medium evaluation, t_cut = t1");
+    /* measured 71 (the longest ray, 6 long, Tr 1e-4). The panels' count
+       grows like (error estimate / tolerance)^(1/4) (Simpson's h^5 error
+       per panel against a share proportional to h): an estimate ten times
+       more pessimistic would cost 71 x 10^(1/4) = 126, above this bound */
     CHECK(most <= 120, "sine medium, tr_tol 1e-3: at most 120 lookups a ray (most %ld)", most);
     NOTE("shadow-ray estimator, sine medium: worst error %.3g of tr_tol, most lookups at 1e-3: %ld", worst, most);
     {
@@ -1307,6 +1311,14 @@ static void tr_camera_cutoff(void)
             CHECK_REL((double)b.Tr[c], (double)a.Tr[c], 64 * real_eps(), "callback: Tr of the whole ray");
         }
         NOTE("callback cut-off: %ld Li calls, %ld without", b.stats.evals, a.stats.evals);
+        /* sigma callbacks: no closed form, no cut (the same solve) */
+        q.tr = 0;
+        oq.cutoff = 0;
+        CHECK_INT(solve_opt(&q, 0.5, 30.5, &oq, &a), HRM_OK, "sigma callbacks: status");
+        oq.cutoff = (hrm_real)1e-3;
+        CHECK_INT(solve_opt(&q, 0.5, 30.5, &oq, &b), HRM_OK, "sigma callbacks, cut-off: status");
+        CHECK(same_result(&a, &b) && b.stats.t_cut == (hrm_real)30.5,
+              "sigma callbacks: the cut-off is not applied (t_cut = t1, the same result)");
     }
 }
 
