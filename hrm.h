@@ -473,7 +473,8 @@
    rectangle rule, Monte Carlo, the analytic march, Simpson and Euler,
    37 KiB for RK4, Adams-Bashforth and the Runge-Kutta pairs, 43 KiB for
    local and 89 KiB for global Gauss-Kronrod, 122 KiB for nested Simpson;
-   hrm_transmittance 32 KiB (120 with coupled tau under nested Simpson).
+   hrm_transmittance 38 KiB (6.5 of it the shadow-ray estimator's
+   HRM_SHADOW_PANELS panels; 120 with coupled tau under nested Simpson).
    clang -O2 inlines the adaptive drivers into one frame: 112 KiB for the
    pairs, 115 for Gauss-Kronrod, 137 for nested Simpson. About 2.2 times
    that with 8 channels, half in float; at most (48 + 48 HRM_CHANNELS) KiB
@@ -767,21 +768,23 @@
    SHADOW RAYS (hrm_transmittance without a method)
    ==========================================================================
    With options NULL or options.method 0, hrm_transmittance is a shadow-ray
-   estimator: sigma_t by adaptive Simpson in t, left to right (steps, rtol,
-   tau_mode and tau_tol do not apply), to
+   estimator: sigma_t by Simpson panels in t, the worst split first (steps,
+   rtol, tau_mode and tau_tol do not apply), to
        |Tr - exact| <= tr_tol max(Tr, cutoff)      (tr_tol 0: 1e-3)
-   where its error estimates hold (the difference of Simpson on a panel
-   and on its halves, taken whole: in noise the two miss the same fine
-   structure). The first panel is an eighth of the ray, and where
-   medium.feature is given no panel is wider than it: a slab between its
-   first samples is not seen (give feature). cutoff > 0 stops the march
-   where every channel's Tr falls below it: the Tr returned is the one
-   reached there, at least the exact Tr(t0, t1), and stats.t_cut says
-   where. Cost: lookups of sigma_t only (one per medium evaluation);
-   bench/results/shadow.md measures them and the share of rays beyond
-   tr_tol on a smooth medium, fBm smoke and a trilinear voxel grid (where
-   kinks between samples escape the estimate on some rays). A named method
-   integrates sigma_t as hrm_solve does (above).
+   where its error estimate holds: over the ray (or a segment of it), the
+   larger of |sum e| and 2 sqrt(sum e^2), e a panel's Simpson on its halves
+   minus Simpson on it (panel errors in noise add like a random walk). The
+   ray starts as 4 panels (17 lookups), and where medium.feature is given no
+   first panel is wider than it: a slab between the first samples is not
+   seen (give feature). cutoff > 0 takes the ray in segments, left to right,
+   and stops after the one where every channel's Tr falls below it: the Tr
+   returned is the one reached there, at least the exact Tr(t0, t1), and
+   stats.t_cut says where. Cost: lookups of sigma_t only (one per medium
+   evaluation). bench/results/shadow.md measures them and the rays beyond
+   tr_tol on a smooth medium, fBm smoke and a trilinear voxel grid: at most
+   0.1% at tr_tol >= 1e-3, up to 1.8% at 1e-4 and 1e-5 (at most 7.1 times
+   tr_tol: a panel whose two rules agree by chance is not split). A named
+   method integrates sigma_t as hrm_solve does (above).
 
    ==========================================================================
    WHAT hrm DOES NOT DO
@@ -1207,6 +1210,9 @@ HRM_API int hrm_version(void);
 #endif
 #ifndef HRM_NS_INTERVALS
 #define HRM_NS_INTERVALS 64  /* nested Simpson's worst-first interval storage */
+#endif
+#ifndef HRM_SHADOW_PANELS
+#define HRM_SHADOW_PANELS 48 /* the shadow-ray estimator's panels a segment */
 #endif
 
 #define HRM__MEMO 32 /* abscissae the adaptive methods remember, and the
@@ -5880,110 +5886,158 @@ static hrm_status hrm__finish(hrm__ctx *c, const hrm_options *o, const hrm_real 
 }
 
 /* The shadow-ray estimator (hrm_transmittance without a method): tau by
-   adaptive Simpson in t, left to right. A panel's error is taken as |S2 -
-   S1| (S1 Simpson on the panel, S2 on its halves), not Lyness's |S2 -
-   S1| / 15: in noise (fBm smoke) the two rules miss the same fine
-   structure and their difference is the error's size, not a fifteenth of
-   it (with /15, 41% of shadow rays through 5-octave smoke were off by
-   more than a 1e-3 tolerance, up to 200 times; with |S2 - S1|, 0.4%, at
-   most 1.8 times). S2 + (S2 - S1) / 15 is kept. A panel is accepted
-   where that estimate is within its share (h / T) of tr_tol max(1,
-   cutoff / Tr), Tr the largest channel's at its start (so |tau - exact|
-   <= tr_tol max(1, cutoff / Tr(t1)), and |Tr - exact| <= tr_tol max(Tr,
-   cutoff) to first order); else halved (its left half's samples kept).
-   After a panel the next width is chosen from the error's h^5 (a factor
-   1/2 to 4). A panel's share is at least 1/64 of the tolerance while half
-   the tolerance set aside for such floors lasts (a jump of sigma: see
-   below). The first panel is an eighth of the ray; where medium.feature
-   is given, no panel is wider than it (samples at half its spacing), so
-   that a structure is seen before any panel is accepted; a slab between
-   the first samples is not (as for every method: give feature). Stops where every
-   channel's Tr is below the cut-off or underflows. At h_min (64 eps of
-   the ray's reach) or past max_evals medium evaluations panels are
-   accepted as they are, with HRM_WARN_H_MIN or HRM_WARN_MAX_EVALS where
-   the estimates of all panels add up to more than the tolerance. */
+   Simpson panels in t, refined worst-first against one error estimate for
+   each segment of the ray. A panel has 5 samples of sigma_t; e = S2 - S1
+   (Simpson on its halves minus Simpson on it) is the size of S1's error,
+   the panel contributes S2 + e / 15, and a segment's estimate is the larger
+   of |sum e| and 2 sqrt(sum e^2): in noise (fBm smoke) the panels' errors
+   have random signs and add like a random walk, which the second term
+   bounds however the signs fall (twice the root: with the root alone,
+   3.1% of smoke rays missed a 1e-4 tolerance, with twice it 0.8%);
+   where they do not (a smooth medium) the first is the larger. Accepting
+   each panel's |e| at its share of the tolerance instead made 8 to 60
+   times the error asked for in the smoke, and twice the lookups; Lyness's
+   |e| / 15 left 41% of those rays beyond 1e-3. The worst panel (largest
+   |e|) is split until the estimate is within tr_tol max(1, cutoff / Tr)
+   times the segment's share of the ray (Tr the thinnest channel's at the
+   segment's start), so that |Tr - exact| <= tr_tol max(Tr, cutoff) to
+   first order. A segment starts as 4 panels, or with medium.feature,
+   panels no wider than it (a slab between the first samples is not seen);
+   the first is the ray (with a cut-off, a quarter of it), each next sized
+   to start as a quarter of the storage's worth of panels at the density the
+   last one needed; where HRM_SHADOW_PANELS fill, the segment ends at its
+   middle panel (the right half's samples given up). The march stops after
+   the segment where every channel's Tr falls below the cut-off or
+   underflows. Panels narrower than twice h_min (64 eps of the ray's reach)
+   are not split; where none can be, or past max_evals medium evaluations,
+   the segment is taken as it is, with HRM_WARN_H_MIN or
+   HRM_WARN_MAX_EVALS. */
+typedef struct hrm__panel {
+    hrm_real a, h;
+    hrm_real f[5][HRM__CH]; /* sigma_t at a + h (0, 1/4, 1/2, 3/4, 1) */
+} hrm__panel;
+
+/* A panel's S2 and e = S2 - S1, channel ch. */
+static hrm_real hrm__panel_e(const hrm__panel *p, int ch, hrm_real *s2)
+{
+    hrm_real s1 = p->h / 6 * (p->f[0][ch] + 4 * p->f[2][ch] + p->f[4][ch]);
+    *s2 = p->h / 12 * (p->f[0][ch] + 4 * p->f[1][ch] + 2 * p->f[2][ch] + 4 * p->f[3][ch] + p->f[4][ch]);
+    return *s2 - s1;
+}
+
+/* The estimate of panels p[0..np), the largest channel's max(|sum e|,
+   2 sqrt(sum e^2)); with tau, their S2 + e / 15 added to it. */
+static hrm_real hrm__shadow_take(const hrm__panel *p, int np, hrm_real *tau)
+{
+    hrm_real est = 0;
+    int i, k;
+    for (i = 0; i < HRM__CH; ++i) {
+        hrm_real sum = 0, sq = 0, s2, e;
+        for (k = 0; k < np; ++k) {
+            e = hrm__panel_e(&p[k], i, &s2);
+            sum += e;
+            sq += e * e;
+            if (tau) tau[i] += s2 + e / 15 > 0 ? s2 + e / 15 : 0;
+        }
+        e = HRM_FABS(sum) > 2 * HRM_SQRT(sq) ? HRM_FABS(sum) : 2 * HRM_SQRT(sq);
+        if (!(e <= est)) est = e; /* NaN or inf: the largest */
+    }
+    return est;
+}
+
 static void hrm__shadow_march(hrm__ctx *c, const hrm_options *o, hrm_real tau[HRM__CH])
 {
-    hrm_real f[5][HRM__CH]; /* sigma_t at a + h (0, 1/4, 1/2, 3/4, 1) */
-    hrm_real T = c->T, a = 0, h = T, hmin, cap = -HRM_LOG(HRM__TINY);
-    hrm_real feature = c->m->feature, esum = 0, floor_left = HRM__R(0.5);
-    /* the thinnest channel: its tau, and the tolerance's factor max(1,
-       cutoff / Tr) there, updated once a panel (one exp) */
+    hrm__panel p[HRM_SHADOW_PANELS];
+    hrm_real T = c->T, hmin, cap = -HRM_LOG(HRM__TINY), feature = c->m->feature;
     hrm_real taumin = 0, loose = 1, tau_cut = o->cutoff > 0 ? -HRM_LOG(o->cutoff) : HRM__R(HUGE_VAL);
-    int i, have = 0;
-    hrm_status short_of = HRM_OK; /* a panel accepted beyond its share */
+    hrm_real a = 0, len = o->cutoff > 0 ? T / 4 : T;
+    int i;
     hmin = 64 * HRM__EPS * (HRM_FABS(c->t0) > T ? HRM_FABS(c->t0) : T);
-    h = T / 8;
-    if (feature > 0 && feature < h) h = feature;
     hrm__fill(tau, HRM__CH, 0);
     c->stats.t_cut = c->t1;
-    hrm__sigma_t_at(c, 0, 0, f[0]);
+    hrm__sigma_t_at(c, 0, 0, p[0].f[0]);
     while (a < T && c->status == HRM_OK) {
-        hrm_real err = 0, allow, share, s1[HRM__CH], s2[HRM__CH], fac;
-        int budget = c->stats.medium_evals >= o->max_evals;
-        if (!(a + h < T) || T - (a + h) < hmin) h = T - a;
-        if (!have) {
-            hrm__sigma_t_at(c, a + h / 2, 0, f[2]);
-            hrm__sigma_t_at(c, a + h, 0, f[4]);
+        hrm_real b, allow, est;
+        int np = 4, k, j;
+        hrm_status short_of = HRM_OK;
+        /* with feature: panels of twice it, half the storage to start */
+        if (feature > 0 && len > HRM_SHADOW_PANELS / 2 * feature) len = HRM_SHADOW_PANELS / 2 * feature;
+        b = a + len;
+        if (!(b < T) || T - b < hmin) b = T;
+        if (feature > 0 && (b - a) / feature > np) {
+            np = (int)((b - a) / feature);
+            if ((hrm_real)np * feature < b - a && np < HRM_SHADOW_PANELS / 2) ++np;
         }
-        hrm__sigma_t_at(c, a + h / 4, 0, f[1]);
-        hrm__sigma_t_at(c, a + 3 * h / 4, 0, f[3]);
-        if (c->status != HRM_OK) break;
-        for (i = 0; i < HRM__CH; ++i) {
-            hrm_real e;
-            s1[i] = h / 6 * (f[0][i] + 4 * f[2][i] + f[4][i]);
-            s2[i] = h / 12 * (f[0][i] + 4 * f[1][i] + 2 * f[2][i] + 4 * f[3][i] + f[4][i]);
-            e = HRM_FABS(s2[i] - s1[i]);
-            if (!(e <= err)) err = e; /* NaN or inf: the largest */
+        /* the segment's first panels, their samples shared at the ends */
+        for (k = 0; k < np; ++k) {
+            p[k].a = a + (b - a) * (hrm_real)k / (hrm_real)np;
+            p[k].h = (k + 1 == np ? b : a + (b - a) * (hrm_real)(k + 1) / (hrm_real)np) - p[k].a;
+            if (k > 0) memcpy(p[k].f[0], p[k - 1].f[4], sizeof p[0].f[0]);
+            for (j = 1; j <= 4; ++j) hrm__sigma_t_at(c, p[k].a + p[k].h * (hrm_real)j / 4, 0, p[k].f[j]);
         }
-        /* a panel's share of the tolerance: its share of the ray, or
-           1/64 of the tolerance while the half of it set aside for such
-           floors lasts: a jump of sigma has an error that shrinks only
-           like h, which the floor ends; a medium with a kink every few
-           samples (a voxel grid) would otherwise add a 1/64 per kink */
-        share = h / T;
-        if (share < HRM__R(1) / 64 && HRM__R(1) / 64 - share <= floor_left) share = HRM__R(1) / 64;
-        allow = o->tr_tol * loose * share;
-        if (!(err <= allow) && h > hmin && !budget) {
-            /* rejected: the left half, its samples kept */
-            memcpy(f[4], f[2], sizeof f[4]);
-            memcpy(f[2], f[1], sizeof f[2]);
-            h /= 2;
-            have = 1;
+        c->stats.steps += np;
+        allow = o->tr_tol * loose * (b - a) / T;
+        while (c->status == HRM_OK && !((est = hrm__shadow_take(p, np, NULL)) <= allow)) {
+            hrm_real worst = -1;
+            int w = -1;
+            for (k = 0; k < np; ++k) {
+                hrm_real e = 0, s2, d;
+                if (!(p[k].h / 2 > hmin)) continue;
+                for (i = 0; i < HRM__CH; ++i)
+                    if (!((d = HRM_FABS(hrm__panel_e(&p[k], i, &s2))) <= e)) e = d;
+                if (!(e <= worst)) {
+                    worst = e;
+                    w = k;
+                }
+            }
+            if (w < 0 || c->stats.medium_evals >= o->max_evals) {
+                short_of = w < 0 ? HRM_WARN_H_MIN : HRM_WARN_MAX_EVALS;
+                break;
+            }
+            if (np == HRM_SHADOW_PANELS) {
+                /* storage full: the segment ends at its middle panel, the
+                   right half's samples given up */
+                np /= 2;
+                b = p[np].a;
+                allow = o->tr_tol * loose * (b - a) / T;
+                continue;
+            }
+            /* panel w into halves, 4 samples more */
+            memmove(&p[w + 1], &p[w], (size_t)(np - w) * sizeof p[0]);
+            ++np;
+            p[w].h /= 2;
+            p[w + 1].a = p[w].a + p[w].h;
+            p[w + 1].h -= p[w].h;
+            memcpy(p[w + 1].f[0], p[w].f[2], sizeof p[0].f[0]);
+            memcpy(p[w + 1].f[2], p[w].f[3], sizeof p[0].f[0]);
+            memcpy(p[w].f[4], p[w].f[2], sizeof p[0].f[0]);
+            memcpy(p[w].f[2], p[w].f[1], sizeof p[0].f[0]);
+            hrm__sigma_t_at(c, p[w].a + p[w].h / 4, 0, p[w].f[1]);
+            hrm__sigma_t_at(c, p[w].a + 3 * p[w].h / 4, 0, p[w].f[3]);
+            hrm__sigma_t_at(c, p[w + 1].a + p[w + 1].h / 4, 0, p[w + 1].f[1]);
+            hrm__sigma_t_at(c, p[w + 1].a + 3 * p[w + 1].h / 4, 0, p[w + 1].f[3]);
+            c->stats.steps++;
             c->stats.rejected++;
-            continue;
         }
-        if (!(err <= allow)) short_of = budget ? HRM_WARN_MAX_EVALS : HRM_WARN_H_MIN;
-        if (share > h / T) floor_left -= share - h / T;
-        esum += err;
-        for (i = 0; i < HRM__CH; ++i) {
-            hrm_real d = s2[i] + (s2[i] - s1[i]) / 15;
-            tau[i] += d > 0 ? d : 0;
+        if (c->status != HRM_OK) break;
+        if (short_of != HRM_OK) hrm__warn(c, short_of);
+        hrm__shadow_take(p, np, tau);
+        for (i = 0; i < HRM__CH; ++i)
             if (i == 0 || tau[i] < taumin) taumin = tau[i];
-        }
         loose = o->cutoff > 0 && taumin > tau_cut - 1 ? o->cutoff / HRM_EXP(-taumin) : 1;
         if (loose < 1) loose = 1;
-        c->stats.steps++;
-        a += h;
-        memcpy(f[0], f[4], sizeof f[0]);
-        have = 0;
-        fac = err > 0 ? HRM__R(0.9) * HRM_SQRT(HRM_SQRT(allow / err)) : 4;
-        h *= fac < HRM__R(0.5) ? HRM__R(0.5) : fac > 4 ? 4 : fac;
-        /* never wider than the medium's feature: two features in one panel
-           can cancel in S2 - S1 while both rules miss them (a trilinear
-           grid: 4.5% of shadow rays beyond tr_tol with panels grown to 4
-           voxels, 0.6% with at most one) */
-        if (feature > 0 && h > feature) h = feature;
+        /* the next segment sized to start a quarter of the storage's worth
+           of panels, as this one's needed */
+        len = (b - a) * (hrm_real)(HRM_SHADOW_PANELS / 4) / (hrm_real)np;
+        if (len > 4 * (b - a)) len = 4 * (b - a);
+        memcpy(p[0].f[0], p[np - 1].f[4], sizeof p[0].f[0]);
+        a = b;
         /* every channel below the cut-off, or underflowed: stop */
         if ((taumin >= cap || taumin > tau_cut) && a < T) {
             c->stats.t_cut = hrm__abscissa(c, a);
             break;
         }
     }
-    /* a panel past h_min or the budget: a warning where the estimates
-       add up to more than the tolerance (not where a jump refined to
-       h_min is still within it) */
-    if (short_of != HRM_OK && !(esum <= o->tr_tol * loose)) hrm__warn(c, short_of);
 }
 
 /* The one solve behind hrm_solve and hrm_transmittance (tr_only: no
