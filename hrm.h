@@ -587,7 +587,8 @@
    several a mixture warp whose density in t is their unshadowed
    irradiance sum power / r(t)^2 (the HRM_MAX_LIGHTS of most weight, power
    / D times the angle the ray subtends), t from u by safeguarded Newton;
-   breakpoints at each such light's foot on the ray (its peak is a node),
+   a light's peak is flattened by the warp (a light left out of it has its
+   foot on the ray as a breakpoint: a node at its peak); breakpoints at
    a spot's cone and falloff edges, and every sphere's shadow (a cone from
    a point or spot light, the cylinder behind it for a directional one),
    merged with the host's. Four point lights beside a ray (tests/
@@ -1220,8 +1221,9 @@ typedef struct hrm_ray_plan {
    where no point or spot light reaches the ray; equiangular for one; for
    several, a user warp whose density is the sum of their unshadowed
    irradiance along the ray, power / r(t)^2 (each light weighted by power
-   over its distance to the ray times the angle the ray subtends). The
-   breakpoints: each point or spot light's foot on the ray, a spot's cone
+   over its distance to the ray times the angle the ray subtends), which
+   flattens each light's peak. The breakpoints: the foot on the ray of a
+   light left out of the mixture (beyond HRM_MAX_LIGHTS), a spot's cone
    and falloff edges, each sphere's shadow from each light (a cone from a
    point or spot light, a cylinder behind it for a directional one); the
    first HRM_MAX_BREAKS in order along the ray. Returns
@@ -3100,7 +3102,6 @@ HRM__DEF hrm_status hrm_light_options(const hrm_light *lights, int nlights, cons
             memset(plan, 0, sizeof *plan);
             return HRM_ERR_SINGULAR;
         }
-        hrm__plan_add(cand, &n, eq.delta, t0, t1);
         if (eq.D == 0) continue; /* on the ray's line, outside it */
         /* the light's weight: its irradiance integrated along the ray */
         mass = (double)l->power / (double)eq.D *
@@ -3118,7 +3119,13 @@ HRM__DEF hrm_status hrm_light_options(const hrm_light *lights, int nlights, cons
                     k = j;
                 }
             }
-            if (!(mass > least)) continue;
+            /* the light left out: its peak a node (the warp resolves
+               the others') */
+            if (!(mass > least)) {
+                hrm__plan_add(cand, &n, eq.delta, t0, t1);
+                continue;
+            }
+            hrm__plan_add(cand, &n, (hrm_real)plan->delta[k], t0, t1);
         } else {
             plan->nmix++;
         }

@@ -931,6 +931,36 @@ static int host_breaks(const scene *s, const ray *r, double t0, double t1, hrm_r
     return k;
 }
 
+/* The scene's point or spot light and its occluders as hrm describes
+   them: hrm_light_options gives the ray's warp and breakpoints (the
+   configurations with both). */
+static hrm_status light_plan(const scene *s, const ray *r, double t0, double t1, hrm_ray_plan *plan,
+                             hrm_options *o)
+{
+    hrm_light l;
+    hrm_sphere sp[MAX_OCC];
+    hrm_real O[3], D[3];
+    int i, k;
+    memset(&l, 0, sizeof l);
+    l.kind = s->kind == SMOKE ? HRM_LIGHT_SPOT : HRM_LIGHT_POINT;
+    l.power = (hrm_real)(s->I[0] + s->I[1] + s->I[2]);
+    if (s->kind == SMOKE) {
+        l.cone = (hrm_real)acos(s->cos_out);
+        l.falloff = (hrm_real)acos(s->cos_in);
+    }
+    for (i = 0; i < 3; ++i) {
+        O[i] = (hrm_real)r->o[i];
+        D[i] = (hrm_real)r->d[i];
+        l.position[i] = (hrm_real)s->light[i];
+        l.direction[i] = (hrm_real)s->axis[i];
+    }
+    for (k = 0; k < s->nocc; ++k) {
+        for (i = 0; i < 3; ++i) sp[k].center[i] = (hrm_real)s->occ[k].c[i];
+        sp[k].radius = (hrm_real)s->occ[k].r;
+    }
+    return hrm_light_options(&l, 1, sp, s->nocc, O, D, (hrm_real)t0, (hrm_real)t1, plan, o);
+}
+
 /* The options of one camera ray for the configuration at rung q. */
 static hrm_options ray_options(const config *cf, double q, uint64_t seed)
 {
@@ -1090,6 +1120,8 @@ static void shade(const scene *s, const config *cf, double q, int x, int y, doub
         hrm_options o = ray_options(cf, q, seed);
         hrm_result res;
         hrm_real brk[HRM_MAX_BREAKS];
+        hrm_ray_plan plan;
+        int planned = 0;
         memset(&m, 0, sizeof m);
         m.user = &r;
         m.Li = scene_Li(s);
@@ -1106,7 +1138,10 @@ static void shade(const scene *s, const config *cf, double q, int x, int y, doub
             m.sigma = dens_sigma_as;
             m.feature = (hrm_real)s->feature;
         }
-        if (cf->breaks) {
+        if (cf->breaks && cf->warp && s->kind != CLOUD) {
+            /* the light described: its warp and breakpoints from hrm */
+            planned = light_plan(s, &r, t0, t1, &plan, &o) == HRM_OK;
+        } else if (cf->breaks) {
             o.nbreaks = host_breaks(s, &r, t0, t1, brk);
             o.breaks = brk;
         }
@@ -1119,7 +1154,7 @@ static void shade(const scene *s, const config *cf, double q, int x, int y, doub
             hrm_options ok = o;
             hrm_status st;
             r.lights = cf->split ? 1 << k : (1 << s->nlights) - 1;
-            if (cf->warp && (r.lights & 1)) light_warp(&r, s->light, &ok.warp);
+            if (cf->warp && (r.lights & 1) && !planned) light_warp(&r, s->light, &ok.warp);
             st = hrm_solve(&m, (hrm_real)t0, (hrm_real)t1, &ok, &res);
             po->warned |= status_bit(st) | status_bit(r.shadow_status);
             po->st[k] = st;
