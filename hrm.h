@@ -473,7 +473,7 @@
    rectangle rule, Monte Carlo, the analytic march, Simpson and Euler,
    37 KiB for RK4, Adams-Bashforth and the Runge-Kutta pairs, 43 KiB for
    local and 89 KiB for global Gauss-Kronrod, 122 KiB for nested Simpson;
-   hrm_transmittance 38 KiB (6.5 of it the shadow-ray estimator's
+   hrm_transmittance 40 KiB (8 of it the shadow-ray estimator's
    HRM_SHADOW_PANELS panels; 120 with coupled tau under nested Simpson).
    clang -O2 inlines the adaptive drivers into one frame: 112 KiB for the
    pairs, 115 for Gauss-Kronrod, 137 for nested Simpson. About 2.2 times
@@ -592,7 +592,7 @@
    a spot's cone and falloff edges, and every sphere's shadow (a cone from
    a point or spot light, the cylinder behind it for a directional one),
    merged with the host's. Four point lights beside a ray (tests/
-   test_breaks.c): Simpson N = 32 16 times nearer the reference with the
+   test_breaks.c): Simpson N = 32 12 times nearer the reference with the
    plan than without.
    Jumps found automatically (options.find_jumps, nested Simpson and
    global Gauss-Kronrod, no breakpoint needed): an interval that keeps 30%
@@ -1211,7 +1211,10 @@ typedef struct hrm_ray_plan {
     int nbreaks;
     int nmix;                        /* lights in the warp's mixture */
     double delta[HRM_MAX_LIGHTS], D[HRM_MAX_LIGHTS], c[HRM_MAX_LIGHTS];
-    double t0, u1;                   /* the ray's start; u at its end */
+    double a0[HRM_MAX_LIGHTS];       /* atan((t0 - delta) / D) */
+    double t0, t1, u1;               /* the ray's ends (t1 may be inf), u at t1 */
+    double last_u, last_t;           /* the warp's last inversion: a plan
+                                        serves one solve at a time */
 } hrm_ray_plan;
 
 /* Sets options->warp and options->breaks / nbreaks (into plan) for the ray
@@ -2835,10 +2838,29 @@ HRM__DEF hrm_status hrm_equiangular_warp(const hrm_real origin[3], const hrm_rea
    unit axis u and cos^2 of its half-angle k, on the part where (w + s d).u
    >= vmin: t in (t0, t1), ascending, into out[0..1]; returns how many. The
    roots of (v.u)^2 - k (v.v) = 0 in their stable form. */
+/* The real roots of A x^2 + B x + C in their stable form, into r (a double
+   root or the linear case's one root twice); returns 0 or 2, or 1 for the
+   linear case. */
+static int hrm__quad_roots(double A, double B, double C, double r[2])
+{
+    double disc, q;
+    if (A == 0) {
+        if (B == 0) return 0;
+        r[0] = r[1] = -C / B;
+        return 1;
+    }
+    disc = B * B - 4 * A * C;
+    if (disc < 0) return 0;
+    q = -(B + (B < 0 ? -sqrt(disc) : sqrt(disc))) / 2;
+    r[0] = q / A;
+    r[1] = q != 0 ? C / q : r[0];
+    return 2;
+}
+
 static int hrm__cone_hits(const double w[3], const double d[3], double len, const double u[3], double k,
                           double vmin, hrm_real t0, hrm_real t1, hrm_real out[2])
 {
-    double wu = 0, du = 0, wd = 0, ww, A, B, C, disc, q, r[2];
+    double wu = 0, du = 0, wd = 0, ww, A, B, C, r[2];
     int i, n, j, count = 0;
     for (i = 0; i < 3; ++i) {
         wu += w[i] * u[i];
@@ -2849,19 +2871,7 @@ static int hrm__cone_hits(const double w[3], const double d[3], double len, cons
     A = du * du - k;
     B = 2 * (wu * du - k * wd);
     C = (wu - sqrt(k) * ww) * (wu + sqrt(k) * ww);
-    if (A == 0) {
-        if (B == 0) return 0;
-        r[0] = -C / B;
-        r[1] = r[0];
-        n = 1;
-    } else {
-        disc = B * B - 4 * A * C;
-        if (disc < 0) return 0;
-        q = -(B + (B < 0 ? -sqrt(disc) : sqrt(disc))) / 2;
-        r[0] = q / A;
-        r[1] = q != 0 ? C / q : r[0];
-        n = 2;
-    }
+    n = hrm__quad_roots(A, B, C, r);
     for (j = 0; j < n; ++j) {
         double t = r[j] / len;
         if (!(t > (double)t0 && t < (double)t1)) continue;
@@ -2909,15 +2919,15 @@ HRM__DEF hrm_status hrm_sphere_breaks(const hrm_real origin[3], const hrm_real d
 }
 
 /* The mixture warp of hrm_light_options: u = sum c_i (atan((t - delta_i)
-   / D_i) - atan((t0 - delta_i) / D_i)), du/dt = sum c_i D_i / (D_i^2 + (t
-   - delta_i)^2) (c_i = power_i / D_i: the lights' irradiance on the
-   ray); t from u by Newton's method kept inside a bracket. */
+   / D_i) - a0_i), a0_i its value at t0, du/dt = sum c_i D_i / (D_i^2 + (t -
+   delta_i)^2) (c_i = power_i / D_i: the lights' irradiance on the ray); t
+   from u by Newton's method kept inside a bracket, the last inversion kept
+   (the solve asks dt_du at the u it has just mapped). */
 static double hrm__mix_u(const hrm_ray_plan *p, double t)
 {
     double u = 0;
     int i;
-    for (i = 0; i < p->nmix; ++i)
-        u += p->c[i] * (atan((t - p->delta[i]) / p->D[i]) - atan((p->t0 - p->delta[i]) / p->D[i]));
+    for (i = 0; i < p->nmix; ++i) u += p->c[i] * (atan((t - p->delta[i]) / p->D[i]) - p->a0[i]);
     return u;
 }
 
@@ -2937,37 +2947,59 @@ static hrm_real hrm__mix_u_of_t(void *user, hrm_real t)
     return (hrm_real)hrm__mix_u((const hrm_ray_plan *)user, (double)t);
 }
 
+static double hrm__mix_invert(hrm_ray_plan *p, double want)
+{
+    double lo = p->t0, hi = p->t1, t;
+    int it;
+    if (want == p->last_u) return p->last_t;
+    if (!(want > 0)) {
+        t = p->t0;
+    } else if (!(want < p->u1)) {
+        t = p->t1;
+    } else {
+        if (!(hi < HUGE_VAL)) {
+            /* an infinite ray: the farthest light's foot plus 2^k of its
+               reach */
+            hi = p->t0;
+            for (it = 0; it < p->nmix; ++it)
+                if (p->delta[it] + p->D[it] > hi) hi = p->delta[it] + p->D[it];
+            for (it = 0; it < 2100 && hrm__mix_u(p, hi) < want; ++it) hi = p->t0 + 2 * (hi - p->t0) + 1;
+        }
+        t = (lo + hi) / 2;
+        for (it = 0; it < 200; ++it) {
+            double f = hrm__mix_u(p, t) - want, g = hrm__mix_du(p, t), nt;
+            if (f < 0)
+                lo = t;
+            else
+                hi = t;
+            nt = g > 0 ? t - f / g : (lo + hi) / 2;
+            if (!(nt > lo && nt < hi)) nt = (lo + hi) / 2;
+            if (nt == t || hi - lo <= 4 * DBL_EPSILON * fabs(t)) break;
+            t = nt;
+        }
+    }
+    p->last_u = want;
+    p->last_t = t;
+    return t;
+}
+
 static hrm_real hrm__mix_t_of_u(void *user, hrm_real u)
 {
-    const hrm_ray_plan *p = (const hrm_ray_plan *)user;
-    double lo = p->t0, hi, t, want = (double)u;
-    int it;
-    if (!(want > 0)) return (hrm_real)p->t0;
-    /* a bracket: the farthest light's foot plus 2^k of its reach */
-    hi = p->t0;
-    for (it = 0; it < p->nmix; ++it)
-        if (p->delta[it] + p->D[it] > hi) hi = p->delta[it] + p->D[it];
-    for (it = 0; it < 2100 && hrm__mix_u(p, hi) < want; ++it) hi = p->t0 + 2 * (hi - p->t0) + 1;
-    t = (lo + hi) / 2;
-    for (it = 0; it < 200; ++it) {
-        double f = hrm__mix_u(p, t) - want, g = hrm__mix_du(p, t), nt;
-        if (f < 0)
-            lo = t;
-        else
-            hi = t;
-        nt = g > 0 ? t - f / g : (lo + hi) / 2;
-        if (!(nt > lo && nt < hi)) nt = (lo + hi) / 2;
-        if (nt == t || hi - lo <= 4 * DBL_EPSILON * fabs(t)) break;
-        t = nt;
-    }
-    return (hrm_real)t;
+    return (hrm_real)hrm__mix_invert((hrm_ray_plan *)user, (double)u);
 }
 
 static hrm_real hrm__mix_dt_du(void *user, hrm_real u)
 {
-    const hrm_ray_plan *p = (const hrm_ray_plan *)user;
-    double g = hrm__mix_du(p, (double)hrm__mix_t_of_u(user, u));
+    hrm_ray_plan *p = (hrm_ray_plan *)user;
+    double g = hrm__mix_du(p, hrm__mix_invert(p, (double)u));
     return g > 0 ? (hrm_real)(1 / g) : (hrm_real)HUGE_VAL;
+}
+
+/* A light's weight in the mixture: c times the angle the ray subtends
+   from it (atan(+inf) is pi / 2: an infinite ray needs no case). */
+static double hrm__mix_mass(double c, double delta, double D, hrm_real t0, hrm_real t1)
+{
+    return c * (atan(((double)t1 - delta) / D) - atan(((double)t0 - delta) / D));
 }
 
 /* A breakpoint candidate into the plan's list (unsorted; deduplicated and
@@ -2982,6 +3014,43 @@ static int hrm__vec_ok(const hrm_real v[3])
     return HRM__FINITE(v[0]) && HRM__FINITE(v[1]) && HRM__FINITE(v[2]);
 }
 
+/* Whether w + s d (s = +inf: the direction d) lies inside the cone of
+   apex 0, unit axis a and half-angle of cosine ca. */
+static int hrm__in_cone(const double w[3], const double d[3], double s, const double a[3], double ca)
+{
+    double v[3], va = 0;
+    int j;
+    for (j = 0; j < 3; ++j) {
+        v[j] = s < HUGE_VAL ? w[j] + s * d[j] : d[j];
+        va += v[j] * a[j];
+    }
+    return va >= hrm__norm3(v) * ca;
+}
+
+/* A sphere's shadow under a directional light travelling along unit a:
+   where the ray (w + s d from the center) crosses the cylinder of the
+   sphere's radius behind it (w + s d).a > 0, into the list. */
+static void hrm__cylinder_hits(const double w[3], const double d[3], double len, const double a[3], double R,
+                               hrm_real t0, hrm_real t1, hrm_real *list, int *n)
+{
+    double wa = 0, da = 0, A = 0, B = 0, C = -R * R, r[2];
+    int j, m;
+    for (j = 0; j < 3; ++j) {
+        wa += w[j] * a[j];
+        da += d[j] * a[j];
+    }
+    for (j = 0; j < 3; ++j) {
+        double wp = w[j] - wa * a[j], dp = d[j] - da * a[j];
+        A += dp * dp;
+        B += 2 * wp * dp;
+        C += wp * wp;
+    }
+    if (!(A > 0) || R == 0) return; /* the ray along the light: no edge */
+    m = hrm__quad_roots(A, B, C, r);
+    for (j = 0; j < m; ++j)
+        if (wa + r[j] * da > 0) hrm__plan_add(list, n, (hrm_real)(r[j] / len), t0, t1);
+}
+
 HRM__DEF hrm_status hrm_light_options(const hrm_light *lights, int nlights, const hrm_sphere *spheres,
                                       int nspheres, const hrm_real origin[3], const hrm_real dir[3],
                                       hrm_real t0, hrm_real t1, hrm_ray_plan *plan, hrm_options *options)
@@ -2989,9 +3058,17 @@ HRM__DEF hrm_status hrm_light_options(const hrm_light *lights, int nlights, cons
     hrm_real cand[2 * HRM_MAX_BREAKS];
     double d[3], len, pi = 3.14159265358979323846;
     int n = 0, i, j, k;
-    if (plan) memset(plan, 0, sizeof *plan);
-    if (!origin || !dir || !plan || !options || (nlights > 0 && !lights) || (nspheres > 0 && !spheres))
+    hrm_status st = HRM_ERR_BAD_WARP;
+    if (!origin || !dir || !plan || !options || (nlights > 0 && !lights) || (nspheres > 0 && !spheres)) {
+        if (plan) memset(plan, 0, sizeof *plan);
         return HRM_ERR_NULL_ARGUMENT;
+    }
+    /* the host's own breakpoints inside the ray (not this plan's of an
+       earlier ray, where options are reused) */
+    if (options->breaks != plan->breaks)
+        for (i = 0; options->breaks && i < options->nbreaks && i < HRM_MAX_BREAKS; ++i)
+            hrm__plan_add(cand, &n, options->breaks[i], t0, t1);
+    memset(plan, 0, sizeof *plan);
     if (!hrm__unit3(dir, d, &len) || !hrm__vec_ok(origin) || !HRM__FINITE(t0) || !(t1 >= t0) || nlights < 0 ||
         nspheres < 0)
         return HRM_ERR_BAD_WARP;
@@ -3014,113 +3091,67 @@ HRM__DEF hrm_status hrm_light_options(const hrm_light *lights, int nlights, cons
     for (i = 0; i < nlights; ++i) {
         const hrm_light *l = &lights[i];
         hrm_warp eq;
+        hrm_real hit[2];
         double w[3], a[3], alen, mass;
-        int reach = 1;
+        int reach = 1, m;
+        if (l->kind != HRM_LIGHT_POINT) hrm__unit3(l->direction, a, &alen);
         if (l->kind == HRM_LIGHT_DIRECTIONAL) {
-            /* a sphere's shadow: the cylinder behind it, along a */
-            hrm__unit3(l->direction, a, &alen);
             for (k = 0; k < nspheres; ++k) {
-                double wa = 0, da = 0, wp[3], dp[3], A = 0, B = 0, C = 0, disc, q, r2[2];
-                for (j = 0; j < 3; ++j) {
-                    w[j] = (double)origin[j] - (double)spheres[k].center[j];
-                    wa += w[j] * a[j];
-                    da += d[j] * a[j];
-                }
-                for (j = 0; j < 3; ++j) {
-                    wp[j] = w[j] - wa * a[j];
-                    dp[j] = d[j] - da * a[j];
-                    A += dp[j] * dp[j];
-                    B += 2 * wp[j] * dp[j];
-                    C += wp[j] * wp[j];
-                }
-                C -= (double)spheres[k].radius * (double)spheres[k].radius;
-                disc = B * B - 4 * A * C;
-                if (!(A > 0) || disc < 0 || spheres[k].radius == 0) continue;
-                q = -(B + (B < 0 ? -sqrt(disc) : sqrt(disc))) / 2;
-                r2[0] = q / A;
-                r2[1] = q != 0 ? C / q : r2[0];
-                for (j = 0; j < 2; ++j)
-                    if (wa + r2[j] * da > 0) hrm__plan_add(cand, &n, (hrm_real)(r2[j] / len), t0, t1);
+                for (j = 0; j < 3; ++j) w[j] = (double)origin[j] - (double)spheres[k].center[j];
+                hrm__cylinder_hits(w, d, len, a, (double)spheres[k].radius, t0, t1, cand, &n);
             }
             continue;
         }
-        if (hrm_equiangular_warp(origin, dir, l->position, &eq) != HRM_OK) return HRM_ERR_BAD_WARP;
+        /* (a position 1e308 from the origin: its offset not finite) */
+        if (hrm_equiangular_warp(origin, dir, l->position, &eq) != HRM_OK) goto fail;
         for (j = 0; j < 3; ++j) w[j] = (double)origin[j] - (double)l->position[j];
         if (l->kind == HRM_LIGHT_SPOT) {
-            /* the cone's edges (the back nappe's for a cone wider than a
-               half-space); the ray reaches the light where it is inside
-               at an end or crosses an edge */
-            hrm_real hit[2];
-            double ca = cos((double)l->cone), cf = cos((double)l->falloff), sgn = ca < 0 ? -1 : 1, in0, in1;
-            double v0 = 0, n0, dot1 = 0;
-            hrm__unit3(l->direction, a, &alen);
+            /* the cone's edges: the forward nappe of a cone narrower than
+               a half-space, the back one's of a wider one (none for pi);
+               the ray reaches the light where an end is inside or it
+               crosses an edge */
+            double ca = cos((double)l->cone), cf = cos((double)l->falloff), ab[3], af[3];
             for (j = 0; j < 3; ++j) {
-                a[j] *= sgn;
-                v0 += (w[j] + (double)t0 * len * d[j]) * a[j] * sgn;
-                dot1 += d[j] * a[j] * sgn;
+                ab[j] = ca < 0 ? -a[j] : a[j];
+                af[j] = cf < 0 ? -a[j] : a[j];
             }
-            {
-                double v[3];
-                for (j = 0; j < 3; ++j) v[j] = w[j] + (double)t0 * len * d[j];
-                n0 = hrm__norm3(v);
-            }
-            in0 = v0 - n0 * ca;
-            if (HRM__FINITE(t1)) {
-                double v[3], v1 = 0;
-                for (j = 0; j < 3; ++j) {
-                    v[j] = w[j] + (double)t1 * len * d[j];
-                    v1 += v[j] * a[j] * sgn;
-                }
-                in1 = v1 - hrm__norm3(v) * ca;
-            } else {
-                in1 = dot1 - ca;
-            }
-            reach = in0 >= 0 || in1 >= 0;
+            reach = hrm__in_cone(w, d, (double)t0 * len, a, ca) || hrm__in_cone(w, d, (double)t1 * len, a, ca);
             if (l->cone < (hrm_real)pi) {
-                int m = hrm__cone_hits(w, d, len, a, ca * ca, 0, t0, t1, hit);
+                m = hrm__cone_hits(w, d, len, ab, ca * ca, 0, t0, t1, hit);
                 for (j = 0; j < m; ++j) hrm__plan_add(cand, &n, hit[j], t0, t1);
                 reach = reach || m > 0;
             }
             if (l->falloff > 0 && l->falloff < l->cone) {
-                double s2 = cf < 0 ? -1 : 1, af[3];
-                int m;
-                for (j = 0; j < 3; ++j) af[j] = a[j] * sgn * s2;
                 m = hrm__cone_hits(w, d, len, af, cf * cf, 0, t0, t1, hit);
                 for (j = 0; j < m; ++j) hrm__plan_add(cand, &n, hit[j], t0, t1);
             }
         }
         for (k = 0; k < nspheres; ++k) {
-            hrm_real hit[2];
-            int m = 0;
-            if (hrm_sphere_breaks(origin, dir, l->position, spheres[k].center, spheres[k].radius, t0,
-                                  HRM__FINITE(t1) ? t1 : (hrm_real)HUGE_VAL, hit, &m) != HRM_OK)
-                return HRM_ERR_BAD_WARP;
+            if (hrm_sphere_breaks(origin, dir, l->position, spheres[k].center, spheres[k].radius, t0, t1, hit, &m) !=
+                HRM_OK)
+                goto fail;
             for (j = 0; j < m; ++j) hrm__plan_add(cand, &n, hit[j], t0, t1);
         }
         if (!reach) continue;
         if (eq.D == 0 && eq.delta >= t0 && eq.delta <= t1) {
-            memset(plan, 0, sizeof *plan);
-            return HRM_ERR_SINGULAR;
+            st = HRM_ERR_SINGULAR;
+            goto fail;
         }
         if (eq.D == 0) continue; /* on the ray's line, outside it */
-        /* the light's weight: its irradiance integrated along the ray */
-        mass = (double)l->power / (double)eq.D *
-               ((HRM__FINITE(t1) ? atan(((double)t1 - (double)eq.delta) / (double)eq.D) : pi / 2) -
-                atan(((double)t0 - (double)eq.delta) / (double)eq.D));
+        mass = hrm__mix_mass((double)l->power / (double)eq.D, (double)eq.delta, (double)eq.D, t0, t1);
         k = plan->nmix;
         if (plan->nmix == HRM_MAX_LIGHTS) {
-            /* full: replace the lightest, where this one weighs more */
+            /* full: replace the lightest, where this one weighs more; the
+               light left out has its peak a node (the warp resolves the
+               others') */
             double least = HUGE_VAL;
             for (j = 0; j < plan->nmix; ++j) {
-                double mj = plan->c[j] * ((HRM__FINITE(t1) ? atan(((double)t1 - plan->delta[j]) / plan->D[j]) : pi / 2) -
-                                          atan(((double)t0 - plan->delta[j]) / plan->D[j]));
+                double mj = hrm__mix_mass(plan->c[j], plan->delta[j], plan->D[j], t0, t1);
                 if (mj < least) {
                     least = mj;
                     k = j;
                 }
             }
-            /* the light left out: its peak a node (the warp resolves
-               the others') */
             if (!(mass > least)) {
                 hrm__plan_add(cand, &n, eq.delta, t0, t1);
                 continue;
@@ -3133,9 +3164,6 @@ HRM__DEF hrm_status hrm_light_options(const hrm_light *lights, int nlights, cons
         plan->D[k] = (double)eq.D;
         plan->c[k] = (double)l->power / (double)eq.D;
     }
-    /* the host's own breakpoints inside the ray */
-    for (i = 0; options->breaks && i < options->nbreaks && i < HRM_MAX_BREAKS; ++i)
-        hrm__plan_add(cand, &n, options->breaks[i], t0, t1);
     /* sorted, duplicates out, the first HRM_MAX_BREAKS along the ray */
     for (i = 1; i < n; ++i) {
         hrm_real x = cand[i];
@@ -3148,12 +3176,15 @@ HRM__DEF hrm_status hrm_light_options(const hrm_light *lights, int nlights, cons
     options->nbreaks = plan->nbreaks;
     memset(&options->warp, 0, sizeof options->warp);
     plan->t0 = (double)t0;
+    plan->t1 = (double)t1;
+    plan->last_u = -1; /* u >= 0: no inversion kept yet */
+    for (j = 0; j < plan->nmix; ++j) plan->a0[j] = atan(((double)t0 - plan->delta[j]) / plan->D[j]);
     if (plan->nmix == 1) {
         options->warp.kind = HRM_WARP_EQUIANGULAR;
         options->warp.delta = (hrm_real)plan->delta[0];
         options->warp.D = (hrm_real)plan->D[0];
     } else if (plan->nmix > 1) {
-        plan->u1 = hrm__mix_u(plan, HRM__FINITE(t1) ? (double)t1 : HUGE_VAL);
+        plan->u1 = hrm__mix_u(plan, plan->t1);
         options->warp.kind = HRM_WARP_USER;
         options->warp.user = plan;
         options->warp.t_of_u = hrm__mix_t_of_u;
@@ -3161,6 +3192,9 @@ HRM__DEF hrm_status hrm_light_options(const hrm_light *lights, int nlights, cons
         options->warp.u_of_t = hrm__mix_u_of_t;
     }
     return HRM_OK;
+fail:
+    memset(plan, 0, sizeof *plan);
+    return st;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -6258,14 +6292,27 @@ static hrm_status hrm__finish(hrm__ctx *c, const hrm_options *o, const hrm_real 
 typedef struct hrm__panel {
     hrm_real a, h;
     hrm_real f[5][HRM__CH]; /* sigma_t at a + h (0, 1/4, 1/2, 3/4, 1) */
+    hrm_real e[HRM__CH];    /* S2 - S1 */
+    hrm_real worst;         /* the largest |e| (NaN: infinite) */
 } hrm__panel;
 
-/* A panel's S2 and e = S2 - S1, channel ch. */
-static hrm_real hrm__panel_e(const hrm__panel *p, int ch, hrm_real *s2)
+/* A panel's S2 (Simpson on its halves), channel ch. */
+static hrm_real hrm__panel_s2(const hrm__panel *p, int ch)
 {
-    hrm_real s1 = p->h / 6 * (p->f[0][ch] + 4 * p->f[2][ch] + p->f[4][ch]);
-    *s2 = p->h / 12 * (p->f[0][ch] + 4 * p->f[1][ch] + 2 * p->f[2][ch] + 4 * p->f[3][ch] + p->f[4][ch]);
-    return *s2 - s1;
+    return p->h / 12 * (p->f[0][ch] + 4 * p->f[1][ch] + 2 * p->f[2][ch] + 4 * p->f[3][ch] + p->f[4][ch]);
+}
+
+/* e and worst from a panel's samples, once they are all taken. */
+static void hrm__panel_set(hrm__panel *p)
+{
+    int i;
+    p->worst = 0;
+    for (i = 0; i < HRM__CH; ++i) {
+        hrm_real s1 = p->h / 6 * (p->f[0][i] + 4 * p->f[2][i] + p->f[4][i]), d;
+        p->e[i] = hrm__panel_s2(p, i) - s1;
+        d = HRM_FABS(p->e[i]);
+        if (!(d <= p->worst)) p->worst = d == d ? d : HRM__R(HUGE_VAL);
+    }
 }
 
 /* The estimate of panels p[0..np), the largest channel's max(|sum e|,
@@ -6275,12 +6322,15 @@ static hrm_real hrm__shadow_take(const hrm__panel *p, int np, hrm_real *tau)
     hrm_real est = 0;
     int i, k;
     for (i = 0; i < HRM__CH; ++i) {
-        hrm_real sum = 0, sq = 0, s2, e;
+        hrm_real sum = 0, sq = 0, e;
         for (k = 0; k < np; ++k) {
-            e = hrm__panel_e(&p[k], i, &s2);
+            e = p[k].e[i];
             sum += e;
             sq += e * e;
-            if (tau) tau[i] += s2 + e / 15 > 0 ? s2 + e / 15 : 0;
+            if (tau) {
+                hrm_real d = hrm__panel_s2(&p[k], i) + e / 15;
+                tau[i] += d > 0 ? d : 0;
+            }
         }
         e = HRM_FABS(sum) > 2 * HRM_SQRT(sq) ? HRM_FABS(sum) : 2 * HRM_SQRT(sq);
         if (!(e <= est)) est = e; /* NaN or inf: the largest */
@@ -6317,22 +6367,18 @@ static void hrm__shadow_march(hrm__ctx *c, const hrm_options *o, hrm_real tau[HR
             p[k].h = (k + 1 == np ? b : a + (b - a) * (hrm_real)(k + 1) / (hrm_real)np) - p[k].a;
             if (k > 0) memcpy(p[k].f[0], p[k - 1].f[4], sizeof p[0].f[0]);
             for (j = 1; j <= 4; ++j) hrm__sigma_t_at(c, p[k].a + p[k].h * (hrm_real)j / 4, 0, p[k].f[j]);
+            hrm__panel_set(&p[k]);
         }
         c->stats.steps += np;
         allow = o->tr_tol * loose * (b - a) / T;
         while (c->status == HRM_OK && !((est = hrm__shadow_take(p, np, NULL)) <= allow)) {
             hrm_real worst = -1;
             int w = -1;
-            for (k = 0; k < np; ++k) {
-                hrm_real e = 0, s2, d;
-                if (!(p[k].h / 2 > hmin)) continue;
-                for (i = 0; i < HRM__CH; ++i)
-                    if (!((d = HRM_FABS(hrm__panel_e(&p[k], i, &s2))) <= e)) e = d;
-                if (!(e <= worst)) {
-                    worst = e;
+            for (k = 0; k < np; ++k)
+                if (p[k].h / 2 > hmin && p[k].worst > worst) {
+                    worst = p[k].worst;
                     w = k;
                 }
-            }
             if (w < 0 || c->stats.medium_evals >= o->max_evals) {
                 short_of = w < 0 ? HRM_WARN_H_MIN : HRM_WARN_MAX_EVALS;
                 break;
@@ -6359,6 +6405,8 @@ static void hrm__shadow_march(hrm__ctx *c, const hrm_options *o, hrm_real tau[HR
             hrm__sigma_t_at(c, p[w].a + 3 * p[w].h / 4, 0, p[w].f[3]);
             hrm__sigma_t_at(c, p[w + 1].a + p[w + 1].h / 4, 0, p[w + 1].f[1]);
             hrm__sigma_t_at(c, p[w + 1].a + 3 * p[w + 1].h / 4, 0, p[w + 1].f[3]);
+            hrm__panel_set(&p[w]);
+            hrm__panel_set(&p[w + 1]);
             c->stats.steps++;
             c->stats.rejected++;
         }

@@ -968,6 +968,32 @@ static void br_lights(void)
         e_ns = fabs((double)r.L[0] - ref) / ref;
         CHECK(st == HRM_OK && e_ns <= 3 * rtol, "four lights (%s), nested Simpson: HRM_OK (%d) within 3 rtol "
               "(%.3g of rtol), %ld evaluations", cb ? "callbacks" : "constants", (int)st, e_ns / rtol, r.stats.evals);
+        {
+            /* every adaptive method under the mixture warp: HRM_OK means
+               within 3 rtol (the manual's promise on smooth integrands) */
+            static const hrm_method am[6] = {HRM_GAUSS_KRONROD, HRM_BOGACKI_SHAMPINE, HRM_DORMAND_PRINCE,
+                                             HRM_FEHLBERG,      HRM_CASH_KARP,        HRM_VERNER};
+            int mi, silent = 0, ok = 0;
+            double worst_ok = 0;
+            for (mi = 0; mi < 6; ++mi) {
+                double e;
+                o = hrm_default_options(am[mi]);
+                o.rtol = (hrm_real)rtol;
+                hrm_light_options(L, 4, NULL, 0, org, dir, 0, 10, &plan, &o);
+                st = hrm_solve(&m, 0, 10, &o, &r);
+                e = fabs((double)r.L[0] - ref) / ref;
+                if (st != HRM_OK) continue;
+                ok++;
+                silent += !(e <= 3 * rtol);
+                if (e > worst_ok) worst_ok = e;
+            }
+            CHECK_INT(silent, 0, "four lights (%s): adaptive methods HRM_OK beyond 3 rtol (%d HRM_OK of 6, worst "
+                      "%.3g of rtol)", cb ? "callbacks" : "constants", ok, worst_ok / rtol);
+            CHECK(ok >= 3, "four lights (%s): at least half the adaptive methods HRM_OK (%d)",
+                  cb ? "callbacks" : "constants", ok);
+            NOTE("four lights (%s): %d of 6 adaptive methods HRM_OK, worst %.3g of rtol", cb ? "callbacks" : "constants",
+                 ok, worst_ok / rtol);
+        }
         o = hrm_default_options(HRM_SIMPSON);
         o.steps = 32;
         hrm_light_options(L, 4, NULL, 0, org, dir, 0, 10, &plan, &o);
@@ -1000,6 +1026,20 @@ static void br_lights(void)
         CHECK_INT(hrm_light_options(ten, 10, NULL, 0, org, dir, 0, 30, &plan, &o), HRM_OK, "ten lights: status");
         CHECK(plan.nmix == 8 && o.nbreaks == 2 && o.breaks[0] == 13 && o.breaks[1] == 19,
               "ten lights: 8 in the mixture (%d), the feet of the two left out (%d)", plan.nmix, o.nbreaks);
+        /* options and plan reused for the next ray (its first 6 lights,
+           on [-1, 12]): the last ray's breakpoints, which point into the
+           plan, are not taken for the host's (read after the plan is
+           cleared they would be two breakpoints at 0); the same plan as
+           with fresh options */
+        {
+            hrm_ray_plan fresh_plan;
+            hrm_options fresh = hrm_default_options(HRM_NESTED_SIMPSON);
+            CHECK_INT(hrm_light_options(ten, 6, NULL, 0, org, dir, -1, 12, &plan, &o), HRM_OK, "reused: status");
+            hrm_light_options(ten, 6, NULL, 0, org, dir, -1, 12, &fresh_plan, &fresh);
+            CHECK(o.nbreaks == fresh.nbreaks && o.nbreaks == 0 && plan.nmix == 6 &&
+                      memcmp(&plan, &fresh_plan, sizeof plan) == 0,
+                  "reused options: the same plan as fresh ones (%d breakpoints, %d fresh)", o.nbreaks, fresh.nbreaks);
+        }
     }
     {
         /* a spot 2 above x = 6 shining down, cone 0.4, falloff 0.3: edges
