@@ -625,7 +625,11 @@
    continuously (a kink: a cloud's iso-surface), so that every piece is
    smooth (a blob 0.09 wide on a clipped ray: Gauss-Kronrod 17 samples
    to 1e-12, nested Simpson 17-33 and Dormand-Prince 21-36 to 1e-5, from
-   80-156, 23-50 and 82-171, and a fifth of the medium calls). Where
+   80-156, 23-50 and 82-171, and a fifth of the medium calls); not where
+   it lies against the ray's end or a breakpoint, within a width whose
+   sigma_t could hold 1/64 of tau_tol (a sphere of smoke that fades out
+   at its surface, entered and left by the ray: a few calls at each end
+   instead of about 50, and no sliver of a piece at t0 to warn on). Where
    neighbours differ and no jump is found (a steep smooth change),
    the larger sample is given to the transmittance layer,
    whose panels must then reproduce it: a blob a few scan points wide is
@@ -1048,7 +1052,7 @@ typedef struct hrm_options {
                            increment relative to itself (or to 1/64, the
                            larger), weighted by Tr where it occurs, so that
                            L's relative error from tau stays below about
-                           it (TRANSMITTANCE). 0: rtol/32 for the adaptive
+                           it (TRANSMITTANCE). 0: rtol/8 for the adaptive
                            methods, 0.01 N^-order for the fixed-step ones
                            (their own error's rate); at least 64 epsilons */
     const hrm_real *breaks; /* abscissae in [t0, t1], strictly increasing,
@@ -5625,12 +5629,14 @@ static hrm_status hrm__resolve(const hrm_options *in, hrm_options *o, int tau_in
     if (o->h_max > 0 && o->h_min > o->h_max) return HRM_ERR_BAD_OPTION;
     if (o->rtol == 0) o->rtol = d.rtol;
     if (o->max_evals == 0) o->max_evals = d.max_evals;
-    /* tau's share of the error: a thirty-second of rtol, or for a fixed
+    /* tau's share of the error: an eighth of rtol (what the source's
+       estimate does not see stays below it: L off by at most rtol/8
+       (1 + K/64) from tau, TRANSMITTANCE), or for a fixed
        step count 1/100 of N^-order, below the rule's own error at every N
        on a unit-scale problem (its cost grows only like log(1/tau_tol)) */
     if (o->tau_tol == 0)
         o->tau_tol = mi->family == HRM__ADAPTIVE_QUAD || mi->family == HRM__PAIR
-                         ? o->rtol / 32
+                         ? o->rtol / 8
                          : HRM__R(0.01 * pow((double)o->steps, -(o->method == HRM_RECTANGLE && o->jitter
                                                                   ? 1 : mi->order)));
     /* below a few dozen epsilons round-off in tau dominates any estimate */
@@ -6069,16 +6075,27 @@ static int hrm__sigma_differs(hrm_real fa, hrm_real fb)
    change between the halves, a jump keeps all of it in one: three halvings
    in a row that keep less than 3/4 of the change end the search (a steep
    but smooth edge, cheaply). Down to 4 ulps of t, a change of 1% of the
-   larger side is a jump; its offset goes to *off. */
+   larger side is a jump; its offset goes to *off. The medium's edge
+   (sigma_t 0 on one side) still bracketed against the ray's end or a
+   breakpoint is no breakpoint once what the bracket can hold, its width
+   times the larger sigma_t, is below 1/64 of tau's tolerance (a panel of
+   the layer is never asked for less, and a kink that close to a piece's
+   end moves no rule's estimate): a medium that fades out at the ray's
+   ends (a sphere of smoke entered and left) costs a few lookups at each,
+   not fifty. */
 static int hrm__locate_sigma_jump(hrm__ctx *c, hrm_real a, hrm_real b, hrm_real fa, hrm_real fb,
                                   hrm_real *off)
 {
-    hrm_real st[HRM__CH];
+    hrm_real st[HRM__CH], a0 = a, b0 = b;
+    hrm_real etol = (c->decoupled ? c->tau->tol : c->rtol) / 64;
     int it, smooth = 0, edge = (fa == 0) != (fb == 0);
+    int at_a = a == 0 || hrm__is_break(c, a), at_b = b == c->off_end || hrm__is_break(c, b);
     for (it = 0; it < 80 && c->status == HRM_OK && smooth < 3; ++it) {
         hrm_real m = a / 2 + b / 2, fm, dl, dr;
         if (!(m > a && m < b)) break;
         if (b - a <= 4 * HRM__EPS * (HRM_FABS(c->t0 + a) + HRM_FABS(c->t0 + b)) / 2) break;
+        if (edge && ((at_a && a == a0) || (at_b && b == b0)) && (b - a) * (fa > fb ? fa : fb) <= etol)
+            return 0;
         fm = hrm__sigma_sum(c, m, 0, st);
         if (edge) {
             /* the medium's edge (sigma_t 0 on one side): a kink at least,
