@@ -86,6 +86,47 @@ static void br_edge_s(void *u, hrm_real t, hrm_real out[NCH])
     for (c = 0; c < NCH; ++c) out[c] = (hrm_real)v;
 }
 
+/* a medium that fades out at both ends of [0, 10] (zero value and slope
+   there, as a sphere of smoke at its surface): sigma_t 6 (u (1 - u))^2,
+   u = t / 10, tau 2 over the ray, albedo 0.8 */
+static double br_fade(double t)
+{
+    double u = t / 10, v = u * (1 - u);
+    return u > 0 && u < 1 ? 6 * v * v : 0;
+}
+
+static void br_fade_a(void *u, hrm_real t, hrm_real out[NCH])
+{
+    int c;
+    (void)u;
+    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)(0.2 * br_fade((double)t));
+}
+
+static void br_fade_s(void *u, hrm_real t, hrm_real out[NCH])
+{
+    int c;
+    (void)u;
+    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)(0.8 * br_fade((double)t));
+}
+
+/* a dense front, sigma_t 20 on [0, 5), 0.05 behind it with a slab of 5 on
+   [7, 7.5): tau 102.7 over [0, 10]; albedo 0.8 */
+static void br_deep_a(void *u, hrm_real t, hrm_real out[NCH])
+{
+    double x = (double)t, v = x < 5 ? 20 : x >= 7 && x < 7.5 ? 5 : 0.05;
+    int c;
+    (void)u;
+    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)(0.2 * v);
+}
+
+static void br_deep_s(void *u, hrm_real t, hrm_real out[NCH])
+{
+    double x = (double)t, v = x < 5 ? 20 : x >= 7 && x < 7.5 ? 5 : 0.05;
+    int c;
+    (void)u;
+    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)(0.8 * v);
+}
+
 static void br_one(void *u, hrm_real t, hrm_real out[NCH])
 {
     int c;
@@ -546,6 +587,53 @@ static void br_scan(void)
               "panels that reproduce what it saw)",
               r.stats.medium_evals - off.stats.medium_evals);
         CHECK_REL(r.L[0], off.L[0], 3 * rtol, "smooth edge: L with and without the scan agree");
+    }
+    for (mi = 0; mi < 7; ++mi) {
+        /* the medium fades out at the ray's ends (sigma_t 0 at t0 and t1):
+           no edge to locate there (within 1/64 of tau_tol of the end: a
+           few halvings, no sliver of a piece); L = 0.8 (1 - e^-2) */
+        hrm_medium m;
+        hrm_options o = hrm_default_options(ms[mi]);
+        hrm_result r, off;
+        memset(&m, 0, sizeof m);
+        m.sigma_a = br_fade_a;
+        m.sigma_s = br_fade_s;
+        m.Li = br_one;
+        o.rtol = (hrm_real)rtol;
+        CHECK_INT(hrm_solve(&m, 0, 10, &o, &r), HRM_OK, "%s, faded ends: status", hrm_method_name(ms[mi]));
+        CHECK_INT(r.njumps, 0, "%s, faded ends: no edge made a breakpoint", hrm_method_name(ms[mi]));
+        CHECK_REL(r.L[0], 0.8 * -expm1(-2.0), 3 * rtol, "%s, faded ends: L", hrm_method_name(ms[mi]));
+        CHECK_REL(r.Tr[0], exp(-2.0), 3 * rtol, "%s, faded ends: Tr", hrm_method_name(ms[mi]));
+        o.find_jumps = -1;
+        hrm_solve(&m, 0, 10, &o, &off);
+        /* 33 samples, a few halvings at each end (each end's bracket
+           holds 1/64 of tau_tol after about log2 of 2e3 / tau_tol / 4,
+           cubed: the fade is quadratic) and what the layer reproduces */
+        CHECK(r.stats.medium_evals - off.stats.medium_evals <= 33 + 2 * 8 + 2 * 17,
+              "%s, faded ends: the scan costs %ld medium calls", hrm_method_name(ms[mi]),
+              r.stats.medium_evals - off.stats.medium_evals);
+    }
+    for (mi = 0; mi < 7; ++mi) {
+        /* behind a dense front (tau 20 per unit) the scan stops once its
+           trapezoid tau passes 2 ln(64 / rtol) (31 at 1e-5, 22 at 1e-3:
+           after 6 or 4 of its 32 intervals): the jump at 5 and the slab
+           behind are not searched for. L = 0.8 (1 - Tr), Tr = e^-102.7:
+           0.8 to round-off */
+        hrm_medium m;
+        hrm_options o = hrm_default_options(ms[mi]);
+        hrm_result r, off;
+        memset(&m, 0, sizeof m);
+        m.sigma_a = br_deep_a;
+        m.sigma_s = br_deep_s;
+        m.Li = br_one;
+        o.rtol = (hrm_real)rtol;
+        CHECK_INT(hrm_solve(&m, 0, 10, &o, &r), HRM_OK, "%s, dense front: status", hrm_method_name(ms[mi]));
+        CHECK_REL(r.L[0], 0.8, 3 * rtol, "%s, dense front: L", hrm_method_name(ms[mi]));
+        o.find_jumps = -1;
+        hrm_solve(&m, 0, 10, &o, &off);
+        CHECK(r.stats.medium_evals - off.stats.medium_evals <= 8,
+              "%s, dense front: the scan costs %ld medium calls (its first 7 samples)",
+              hrm_method_name(ms[mi]), r.stats.medium_evals - off.stats.medium_evals);
     }
 }
 
