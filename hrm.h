@@ -1314,6 +1314,7 @@ HRM_API int hrm_version(void);
 #define HRM__IS_FLOAT (sizeof(hrm_real) == sizeof(float))
 #define HRM__TINY (HRM__IS_FLOAT ? HRM__R(FLT_MIN) : HRM__R(DBL_MIN)) /* smallest normal */
 #define HRM__EPS (HRM__IS_FLOAT ? HRM__R(FLT_EPSILON) : HRM__R(DBL_EPSILON))
+#define HRM__SQRT_EPS (HRM__IS_FLOAT ? HRM__R(3.4526698e-4) : HRM__R(1.4901161193847656e-8))
 #define HRM__CH HRM_CHANNELS
 
 /* The libm function matching the scalar type; the branch is a constant. */
@@ -4018,29 +4019,45 @@ static hrm_real hrm__newton_top(const hrm__nodes_info *ni, hrm_real *d, hrm_real
    samples the medium. With an exponential fit (expo: intervals many
    optical depths thick, where a polynomial rule of Tr cannot be exact)
    the rule is applied to sigma_t alone against tau's increment, and its
-   relative miss weighs A. em receives the miss in L's units, per channel;
-   w are the weights of the rule on [a, b] (length h in p), pt its nodes,
-   tau_a and tau_b the layer's tau at the interval's ends. */
+   relative miss weighs A. The rule runs in the warp's variable, where
+   dt/du (steep at a strong warp's ends) is no polynomial even for a
+   constant medium: the rule is compared not with the layer's exact
+   integral but with itself applied to the homogeneous medium of the
+   same increment of tau over [a, b] (whose exact integral is the same),
+   so that what dt/du alone costs the rule cancels and a constant medium
+   is never refined for it (nested Simpson, a light 1e-3 from the ray:
+   2.9 times the source evaluations of the closed form, before). em
+   receives the miss in L's units, per channel; w are the weights of the
+   rule on [a, b] (length h in p), pt its nodes, tau_a and tau_b the
+   layer's tau at the interval's ends, off_a and off_b their offsets. */
 static void hrm__medium_miss(const hrm__ctx *c, const hrm__pt *const *pt, const hrm_real *w,
                              int n, hrm_real h, const hrm_real *tau_a, const hrm_real *tau_b,
-                             hrm_real em[HRM__CH])
+                             hrm_real off_a, hrm_real off_b, hrm_real em[HRM__CH])
 {
     int i, j;
     for (i = 0; i < HRM__CH; ++i) {
-        hrm_real d = tau_b[i] - tau_a[i], A, M = 0, MT = 0, Q = 0, Mabs = 0, rel, R, dd;
+        hrm_real d = tau_b[i] - tau_a[i], A, M = 0, MT = 0, Q = 0, Mabs = 0, M0 = 0, rel, R, dd;
+        hrm_real sbar = off_b > off_a ? d / (off_b - off_a) : 0, dev = 0, e0;
         em[i] = 0;
         if (!(d > 0)) continue;
         A = HRM_EXP(-tau_a[i]) * -HRM_EXPM1(-d);
         if (!(A > 64 * HRM__EPS)) continue; /* Tr is 0 there: no light to miss */
         for (j = 0; j < n; ++j) {
+            /* the homogeneous medium's sigma_t (Tr) ds/dp at the node */
+            hrm_real f0 = sbar * pt[j]->J;
+            hrm_real fj = c->expo ? pt[j]->sg[i] : pt[j]->sg[i] * pt[j]->tr[i];
+            if (!c->expo) f0 *= HRM_EXP(-tau_a[i] - sbar * (pt[j]->off - off_a));
+            if (HRM_FABS(fj - f0) > HRM__SQRT_EPS * f0) dev = 1;
             M += w[j] * pt[j]->sg[i];
             MT += w[j] * pt[j]->sg[i] * pt[j]->tr[i];
             Q += w[j] * pt[j]->gq[i] * pt[j]->tr[i];
             Mabs += HRM_FABS(w[j]) * pt[j]->sg[i];
+            M0 += w[j] * f0;
         }
         M *= h;
         MT *= h;
         Q *= h;
+        M0 *= h;
         Mabs *= HRM_FABS(h);
         /* What rounding leaves of the comparison, in units of tau: the
            layer's tau at a point is its panel's start plus a Chebyshev sum
@@ -4048,11 +4065,16 @@ static void hrm__medium_miss(const hrm__ctx *c, const hrm__pt *const *pt, const 
            paths), each to a few epsilons, and the rule's own sum; only a
            miss beyond it counts (steps of 1e-14 missed by 1%). */
         dd = 32 * HRM__EPS * (tau_b[i] + 8 + Mabs);
+        /* where the rule misses even the homogeneous medium's integral
+           by half, it cannot tell a medium from it: unless the nodes saw
+           that medium itself, the layer's exact integral is the measure */
         if (c->expo) {
-            rel = HRM_FABS(M - d) - dd;
+            e0 = HRM_FABS(M0 - d);
+            rel = (e0 < d / 2 || !dev ? HRM_FABS(M - M0) : HRM_FABS(M - d)) - dd;
             rel = rel > 0 ? rel / d : 0;
         } else {
-            rel = HRM_FABS(MT - A) - HRM_EXP(-tau_a[i]) * dd;
+            e0 = HRM_FABS(M0 - A);
+            rel = (e0 < A / 2 || !dev ? HRM_FABS(MT - M0) : HRM_FABS(MT - A)) - HRM_EXP(-tau_a[i]) * dd;
             rel = rel > 0 ? rel / A : 0;
         }
         R = MT > 0 ? HRM_FABS(Q) / MT : 0;
@@ -4090,7 +4112,7 @@ static int hrm__rk_quad(hrm__ctx *c, const hrm__nodes_info *ni, const hrm__pt *s
     hrm__fill(em, HRM__CH, 0);
     HRM_ASSERT(!(err && c->mcheck) || endj >= 0); /* every pair has a node at c = 1 */
     if (err && c->mcheck && endj >= 0)
-        hrm__medium_miss(c, qs, ni->bw, ni->m, h, start->tau, pn[endj].tau, em);
+        hrm__medium_miss(c, qs, ni->bw, ni->m, h, start->tau, pn[endj].tau, start->off, pn[endj].off, em);
     if (c->expo) {
         /* the nodes' polynomial against the exact local exponential; the
            embedded estimates are those of the fitted values g (what is
@@ -4667,7 +4689,7 @@ static void hrm__ns_five(const hrm__ctx *c, const hrm__pt *a, const hrm__pt *ql,
         nodes[2] = m;
         nodes[3] = qr;
         nodes[4] = b;
-        hrm__medium_miss(c, nodes, boole, 5, b->p - a->p, a->tau, b->tau, M);
+        hrm__medium_miss(c, nodes, boole, 5, b->p - a->p, a->tau, b->tau, a->off, b->off, M);
     }
 }
 
@@ -4803,13 +4825,13 @@ static void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, const hrm_real *tau_a,
     if (c->mcheck) {
         /* the nodes against the layer's tau at the interval's ends */
         const hrm__pt *nodes[15];
-        hrm_real tea[HRM__CH], teb[HRM__CH], off;
-        hrm__map(c, a, &off, &J);
-        hrm__tau_of(c, off, tea);
-        hrm__map(c, b, &off, &J);
-        hrm__tau_of(c, off, teb);
+        hrm_real tea[HRM__CH], teb[HRM__CH], oa, ob;
+        hrm__map(c, a, &oa, &J);
+        hrm__tau_of(c, oa, tea);
+        hrm__map(c, b, &ob, &J);
+        hrm__tau_of(c, ob, teb);
         for (j = 0; j < N; ++j) nodes[j] = &pt[j];
-        hrm__medium_miss(c, nodes, R->wk, N, hl, tea, teb, io->M);
+        hrm__medium_miss(c, nodes, R->wk, N, hl, tea, teb, oa, ob, io->M);
     }
     if (chk) {
         /* the Lagrange weights of the nodes at the check sample */
