@@ -727,9 +727,9 @@ void bench_measure_transmittance(bench_state *st)
     hrm_medium m[BENCH_TRANS_COLS];
     bench_calls calls[BENCH_TRANS_COLS];
     static const hrm_tau_mode modes[BENCH_TRANS_COLS] = {
-        HRM_TAU_DEFAULT, HRM_TAU_DEFAULT, HRM_TAU_DECOUPLED, HRM_TAU_COUPLED, HRM_TAU_DEFAULT};
+        HRM_TAU_DEFAULT, HRM_TAU_DEFAULT, HRM_TAU_DEFAULT, HRM_TAU_COUPLED, HRM_TAU_DEFAULT};
     static const char *const labels[BENCH_TRANS_COLS] = {
-        "const", "sigma", "sigma, tau decoupled", "sigma, tau coupled", "sigma, exact Tr"};
+        "const", "sigma", "sigma, tau default", "sigma, tau coupled", "sigma, exact Tr"};
     int scene_of[BENCH_TRANS_COLS];
 
     tr->point = point >= 0 && bench_scene_selected(&st->cfg, point) ? point : -1;

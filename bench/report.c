@@ -695,7 +695,7 @@ static void bench_report_breaks(const bench_state *st, const bench_out *o)
 static void bench_report_transmittance(const bench_state *st, const bench_out *o)
 {
     static const char *const heads[BENCH_TRANS_COLS] = {
-        "(a) point, const", "(b) point, sigma", "(c) smoke, decoupled", "(d) smoke, coupled",
+        "(a) point, const", "(b) point, sigma", "(c) smoke, default", "(d) smoke, coupled",
         "(e) smoke, exact Tr"};
     const bench_trans *tr = &st->trans;
     bench_table t;
@@ -710,9 +710,11 @@ static void bench_report_transmittance(const bench_state *st, const bench_out *o
                "to integrate.\n"
                "(b) point scene, the same sigma through sigma_a/sigma_s callbacks: hrm "
                "integrates a constant sigma_t (b = a when that costs nothing).\n"
-               "(c) smoke scene (sigma varies +-50%% along the ray), tau_mode = "
-               "HRM_TAU_DECOUPLED (the default): medium-only samples placed for tau by their "
-               "own control (tau_tol default).\n"
+               "(c) smoke scene (sigma varies +-50%% along the ray), tau_mode 0, each method's "
+               "default: the adaptive methods' transmittance layer (medium-only samples placed "
+               "for tau by their own control, tau_tol default); for the fixed-step ones, the "
+               "stream (tau from sigma_t at their nodes and at most 16 extra samples in t where "
+               "the warp leaves the nodes sparsest: 2N + 8 sigma samples at most).\n"
                "(d) smoke scene, tau_mode = HRM_TAU_COUPLED: tau from the sigma_t samples at "
                "the source abscissae, as the papers do.\n"
                "(e) smoke scene with its exact Tr(ta, tb) as the medium's transmittance "
