@@ -734,14 +734,15 @@
    round-off, under every warp and for every method. A closed form (the
    homogeneous flag, or the transmittance callback) is always used where
    given. Otherwise:
-   Defaults: decoupled for the adaptive methods and for the fixed-step
-   ones with an exponential fit; the stream for the fixed-step methods
-   under a warp; coupled for them without a warp (what N says: N or
-   2N + 1 medium evaluations, none else) and for hrm_transmittance with a
-   named fixed-step method on a finite ray; coupled always for the
-   analytic march.
-   The stream (HRM_TAU_DEFAULT, fixed-step methods under a warp, which
-       spaces their nodes for a light, not for the medium): sigma_t at the
+   Defaults: decoupled for the adaptive methods, for the fixed-step ones
+   with an exponential fit and for Simpson, RK4 and Adams-Bashforth under
+   a warp; the stream for the rectangle rule, Monte Carlo and Euler under
+   a warp; coupled for the fixed-step methods without a warp (what N
+   says: N or 2N + 1 medium evaluations, none else) and for
+   hrm_transmittance with a named fixed-step method on a finite ray;
+   coupled always for the analytic march.
+   HRM_TAU_STREAM (fixed-step methods under a warp, which spaces their
+       nodes for a light, not for the medium): sigma_t at the
        nodes, which the source needs anyway, and at extra points in t where
        the nodes are sparsest (the warp's grid in t filled to a common
        width; a user warp: each gap its share by length of the points
@@ -753,10 +754,13 @@
        is exact. Measured on a light 0.3 from a ray through a medium
        varying +-50% (bench/results/summary.md, the transmittance table's
        column (c)): L within about 2x of its error with the exact Tr at
-       N = 8, 32, 128 for every fixed-step method but Simpson and RK4 at
-       N = 8 (6x: 2.2e-3 against 3.6e-4), at 24 to 273 samples where the
-       layer takes 25 to 458; set HRM_TAU_DECOUPLED for the layer's
-       control.
+       N = 8, 32, 128 for the rectangle rule, Monte Carlo and Euler, at 24
+       to 146 samples where the layer takes 25 to 177. A medium with
+       detail finer than the nodes' spacing far from the light is not
+       resolved by 16 extra samples: Simpson under the spot's warp in
+       make render's smoke (fBm, five octaves) at N = 32, RMSE 9e-3 with
+       the stream against 1e-3 with the layer, which is why the
+       fourth-order rules keep the layer by default.
    HRM_TAU_DECOUPLED  sigma_t is sampled on its own abscissae,
        apart from the source samples (decoupled ray marching: Kulla and
        Fajardo 2012; Munoz 2014 s.6), on panels in t that march along the
@@ -958,19 +962,25 @@ typedef enum hrm_gk_rule {
    Both integrate sigma_t in t over the actual distances between abscissae,
    so a constant sigma_t given through callbacks is exact under any warp. */
 typedef enum hrm_tau_mode {
-    HRM_TAU_DEFAULT = 0,     /* adaptive methods, and fixed-step ones with
-                                a fit: HRM_TAU_DECOUPLED; fixed-step ones
-                                under a warp: the stream (their nodes'
-                                sigma_t and extra samples in t, at most
-                                2N + 8); without one, and the analytic
-                                march: HRM_TAU_COUPLED (TRANSMITTANCE) */
+    HRM_TAU_DEFAULT = 0,     /* adaptive methods, and fixed-step ones
+                                with a fit: HRM_TAU_DECOUPLED; under a
+                                warp, the rectangle rule, Monte Carlo and
+                                Euler HRM_TAU_STREAM, the other fixed-step
+                                ones HRM_TAU_DECOUPLED; fixed-step ones
+                                without a warp, and the analytic march:
+                                HRM_TAU_COUPLED (TRANSMITTANCE) */
     HRM_TAU_DECOUPLED,       /* medium-only samples placed in t by their own
                                 accuracy control (options.tau_tol), apart
                                 from the source samples (Kulla and Fajardo
                                 2012; Munoz 2014 s.6) */
-    HRM_TAU_COUPLED          /* from the sigma_t samples at the source
+    HRM_TAU_COUPLED,         /* from the sigma_t samples at the source
                                 abscissae, at the rule's order: no extra
                                 medium evaluation, as the papers do */
+    HRM_TAU_STREAM           /* fixed-step methods (not the analytic
+                                march): sigma_t at their nodes and at most
+                                16 extra samples in t where the nodes are
+                                sparsest, integrated in t (at most 2N + 8
+                                samples; 2N + 17 for Simpson and RK4) */
 } hrm_tau_mode;
 
 /* Importance sampling as a change of variable t = t(u) (Munoz 2014 s.5):
@@ -1067,8 +1077,10 @@ typedef struct hrm_options {
     hrm_gk_rule gk_rule;/* Gauss-Kronrod. 0: HRM_GK_K15 */
     hrm_warp warp;      /* importance sampling. 0: none */
     hrm_tau_mode tau_mode; /* 0: decoupled (adaptive methods, fixed-step
-                              ones with a fit), the stream (fixed-step
-                              ones under a warp), else coupled */
+                              ones with a fit, or of order 4 under a
+                              warp), the stream (the rectangle rule,
+                              Monte Carlo, Euler under a warp), else
+                              coupled */
     hrm_real tau_tol;   /* decoupled tau: the error of each optical-depth
                            increment relative to itself (or to 1/64, the
                            larger), weighted by Tr where it occurs, so that
@@ -5890,16 +5902,28 @@ static hrm_status hrm__resolve(const hrm_options *in, hrm_options *o, int tau_in
          o->form == HRM_FORM_RTE || o->tau_mode == HRM_TAU_COUPLED))
         return HRM_ERR_BAD_OPTION;
     if (o->gk_rule == HRM_GK_RULE_DEFAULT) o->gk_rule = HRM_GK_K15;
-    if ((int)o->tau_mode < 0 || (int)o->tau_mode > (int)HRM_TAU_COUPLED) return HRM_ERR_BAD_OPTION;
+    if ((int)o->tau_mode < 0 || (int)o->tau_mode > (int)HRM_TAU_STREAM) return HRM_ERR_BAD_OPTION;
+    /* the stream needs nodes in increasing t, with tau at each: a
+       fixed-step rule's (the analytic march takes its own), no fit */
+    if (o->tau_mode == HRM_TAU_STREAM &&
+        (hrm__methods[o->method].family > HRM__FIXED_IVP || o->method == HRM_ANALYTIC_MARCH || o->exponential))
+        return HRM_ERR_BAD_OPTION;
     if (o->tau_mode == HRM_TAU_DEFAULT) o->tau_mode = d.tau_mode;
     /* fixed-step methods: tau from their own nodes (what N says, in sigma
        too) without a warp or a fit, and where tau alone is integrated in
        t (tau_in_t: hrm_transmittance on a finite ray, which ignores the
        warp); the layer under a warp, which spaces the nodes for a light,
        not for the medium */
-    if (o->tau_mode == HRM_TAU_DEFAULT && ((o->warp.kind == HRM_WARP_NONE || tau_in_t) || o->exponential))
-        o->tau_mode = !o->exponential ? HRM_TAU_COUPLED : HRM_TAU_DECOUPLED;
-    /* (left HRM_TAU_DEFAULT under a warp: hrm__setup's stream) */
+    /* under a warp, the stream for the rules of order 2 at most, whose own
+       error its 16 extra samples stay below; the layer for the others
+       (make render's smoke, Simpson N = 32: RMSE 9e-3 with the stream,
+       1e-3 with the layer, for 103 and 478 lookups a pixel) */
+    if (o->tau_mode == HRM_TAU_DEFAULT)
+        o->tau_mode = (o->warp.kind == HRM_WARP_NONE || tau_in_t) && !o->exponential ? HRM_TAU_COUPLED
+                    : !o->exponential && (o->method == HRM_RECTANGLE || o->method == HRM_MONTE_CARLO ||
+                                          o->method == HRM_EULER)
+                        ? HRM_TAU_STREAM
+                        : HRM_TAU_DECOUPLED;
     if (!(HRM__FINITE(o->rtol) && o->rtol >= 0 && HRM__FINITE(o->atol) && o->atol >= 0 &&
           HRM__FINITE(o->h_min) && o->h_min >= 0 && HRM__FINITE(o->h_max) && o->h_max >= 0 &&
           HRM__FINITE(o->h0) && o->h0 >= 0 && o->max_evals >= 0 &&
@@ -6024,9 +6048,8 @@ static hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, const hrm_medium *m, 
            : c->rte ? HRM__TAU_STATE
            : m->transmittance ? HRM__TAU_TRCB
            : o->tau_mode == HRM_TAU_DECOUPLED ? HRM__TAU_LAYER
-           /* the default of the fixed-step methods under a warp (tau
-              alone: the layer, which needs no nodes) */
-           : o->tau_mode == HRM_TAU_DEFAULT ? (c->use_le || c->use_li ? HRM__TAU_STREAM : HRM__TAU_LAYER)
+           /* (tau alone: the layer, which needs no nodes) */
+           : o->tau_mode == HRM_TAU_STREAM ? (c->use_le || c->use_li ? HRM__TAU_STREAM : HRM__TAU_LAYER)
            : HRM__TAU_RULES;
     c->decoupled = c->src == HRM__TAU_LAYER;
     c->closed = c->homog || c->src == HRM__TAU_TRCB || c->decoupled || c->src == HRM__TAU_STREAM;

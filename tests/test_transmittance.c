@@ -340,9 +340,10 @@ static void tr_constant_cost(void)
 
 /* 2. tau in a heterogeneous medium (sigma_t within +-50% of its mean)
    under the equiangular warp, as each method takes it by default (the
-   adaptive methods: the layer; the fixed-step ones: the stream, their
-   nodes' sigma_t and extra samples in t) and, for the fixed-step ones,
-   from the layer (HRM_TAU_DECOUPLED): the error is that of the same solve
+   layer; the stream for the rectangle rule, Monte Carlo and Euler) and,
+   for the fixed-step ones, from the layer (HRM_TAU_DECOUPLED) and the
+   stream (HRM_TAU_STREAM: their nodes' sigma_t and extra samples in t):
+   the error is that of the same solve
    given the exact Tr as a callback, within 2x (the target of the
    transmittance work) plus a floor of round-off (the exact-Tr solve's own
    error can be far below what tau can be resolved to in this precision).
@@ -363,18 +364,21 @@ static void tr_decoupled_vs_exact(void)
     for (c = 0; c < NCH; ++c) ref[c] = tr_reference(&p, c, 0, 10);
     for (mi = 0; mi < TR_NMETHODS; ++mi)
         for (k = 0; k < 3; ++k)
-            for (tm = 0; tm < (tr_adaptive(tr_methods[mi]) ? 1 : 2); ++tm) {
+            for (tm = 0; tm < (tr_adaptive(tr_methods[mi]) || tr_methods[mi] == HRM_ANALYTIC_MARCH ? 1 : 3); ++tm) {
                 hrm_method m = tr_methods[mi];
                 hrm_options o = tr_options(m, ns[k], rtols[k], 1, &p);
                 hrm_medium ms = tr_make(&p, 0, 0), mx = tr_make(&p, 0, 1);
                 hrm_result rd, rx, rc;
                 double ed = 0, ex = 0, ec = 0, bound;
-                const char *how = tm ? "the layer" : tr_adaptive(m) ? "the layer (default)" : "the stream (default)";
-                if (tm) o.tau_mode = HRM_TAU_DECOUPLED;
+                int low = m == HRM_RECTANGLE || m == HRM_MONTE_CARLO || m == HRM_EULER;
+                int stream = tm == 2 || (tm == 0 && low);
+                const char *how = tm == 1 ? "the layer" : tm == 2 ? "the stream" : stream ? "the stream (default)"
+                                                                               : "the default";
+                if (tm) o.tau_mode = tm == 1 ? HRM_TAU_DECOUPLED : HRM_TAU_STREAM;
                 CHECK(hrm_solve(&mx, 0, 10, &o, &rx) >= 0, "%s: exact-Tr solve", hrm_method_name(m));
                 p.n_sigma = 0;
                 CHECK(hrm_solve(&ms, 0, 10, &o, &rd) >= 0, "%s: solve, %s", hrm_method_name(m), how);
-                if (!tm && !tr_adaptive(m))
+                if (stream)
                     CHECK(p.n_sigma <= 2 * ns[k] + (m == HRM_SIMPSON || m == HRM_RK4 ? 17 : 8) &&
                               rd.stats.medium_evals == p.n_sigma,
                           "%s N %d, the stream: %ld sigma abscissae (medium_evals %ld), at most 2N + 8 "
@@ -420,7 +424,8 @@ static void tr_decoupled_vs_exact(void)
 }
 
 /* 2b. The stream's cost, as the manual states it: a fixed-step method
-   under a warp takes sigma_t at no more than 2N + 8 abscissae (its nodes,
+   under a warp with HRM_TAU_STREAM (the default of the rectangle rule,
+   Monte Carlo and Euler) takes sigma_t at no more than 2N + 8 abscissae (its nodes,
    the ray's ends, at most 16 extra points; Simpson and RK4 2N + 17: their
    nodes and 16 extra points), two more per breakpoint (its
    sides), whatever the warp (equiangular, distance, a mixture of two
@@ -472,6 +477,7 @@ static void tr_stream_counts(void)
                         o.breaks = brk;
                         o.nbreaks = 2;
                     }
+                    o.tau_mode = HRM_TAU_STREAM;
                     p.n_sigma = 0;
                     CHECK_INT(hrm_solve(&ms, 0, 10, &o, &r), HRM_OK, "%s warp %d N %d breaks %d: status",
                               hrm_method_name(m), w, ns[k], b);
@@ -486,6 +492,18 @@ static void tr_stream_counts(void)
                     }
                 }
     if (verbose()) NOTE("the stream, N >= 8: Tr off by at most %.2g", worst);
+    {
+        /* where it cannot serve: the analytic march (its own tau), a fit */
+        hrm_medium ms = tr_make(&p, 0, 0);
+        hrm_options o = tr_options(HRM_ANALYTIC_MARCH, 8, 1e-3, 1, &p);
+        hrm_result r;
+        o.tau_mode = HRM_TAU_STREAM;
+        CHECK_INT(hrm_solve(&ms, 0, 10, &o, &r), HRM_ERR_BAD_OPTION, "the stream, analytic march");
+        o = tr_options(HRM_SIMPSON, 8, 1e-3, 1, &p);
+        o.tau_mode = HRM_TAU_STREAM;
+        o.exponential = 1;
+        CHECK_INT(hrm_solve(&ms, 0, 10, &o, &r), HRM_ERR_BAD_OPTION, "the stream with a fit");
+    }
 }
 
 /* 3. hrm_transmittance: the layer's Tr(t0, t1) is within tau_tol of the
