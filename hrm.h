@@ -10,32 +10,63 @@
    ---- quick start begin ----
    #define HRM_IMPLEMENTATION
    #include "hrm.h"
+   #include <math.h>
    #include <stdio.h>
+   #include <string.h>
 
-   // In-scattered radiance toward the camera at distance t along the ray,
-   // phase function and light transmittance included (the host's job).
-   static void sun(void *user, hrm_real t, hrm_real out[HRM_CHANNELS]) {
+   // A point light of intensity I in homogeneous fog; the camera ray runs
+   // from the origin along +z.
+   typedef struct fog_scene {
+       double light[3], I, sigma_t;
+   } fog_scene;
+
+   // In-scattered radiance toward the camera at distance t: the light's
+   // intensity over r^2, attenuated on its way (your shadow ray goes here),
+   // times an isotropic phase function.
+   static void in_scatter(void *user, hrm_real t, hrm_real out[HRM_CHANNELS]) {
+       const fog_scene *s = (const fog_scene *)user;
+       double dx = s->light[0], dy = s->light[1], dz = s->light[2] - (double)t;
+       double r2 = dx * dx + dy * dy + dz * dz;
+       double v = s->I * exp(-s->sigma_t * sqrt(r2)) / r2 / (4 * 3.14159265358979);
        int c;
-       (void)user; (void)t;
-       for (c = 0; c < HRM_CHANNELS; ++c) out[c] = (hrm_real)0.25;
+       for (c = 0; c < HRM_CHANNELS; ++c) out[c] = (hrm_real)v;
    }
 
    int main(void) {
-       hrm_medium fog = {0};            // zero: every term absent
-       hrm_options opt = hrm_default_options(HRM_SIMPSON);
+       fog_scene s = {{0, 0.5, 5}, 10, 0.3};
+       hrm_real origin[3] = {0, 0, 0}, dir[3] = {0, 0, 1}, t0 = 0, t1 = 20;
+       hrm_medium fog;
+       hrm_light lamp;
+       hrm_ray_plan plan;
+       hrm_options opt = hrm_default_options(HRM_NESTED_SIMPSON);
        hrm_result res;
+       hrm_status st;
        int c;
-       fog.flags = HRM_MEDIUM_HOMOGENEOUS;
+
+       memset(&fog, 0, sizeof fog);         // zero: every term absent
+       fog.user = &s;
+       fog.flags = HRM_MEDIUM_HOMOGENEOUS;  // constants: Tr in closed form
        for (c = 0; c < HRM_CHANNELS; ++c) {
-           fog.const_sigma_a[c] = (hrm_real)0.1;
-           fog.const_sigma_s[c] = (hrm_real)0.5;
+           fog.const_sigma_a[c] = (hrm_real)0.05;
+           fog.const_sigma_s[c] = (hrm_real)0.25;
        }
-       fog.Li = sun;
-       opt.steps = 16;
-       if (hrm_solve(&fog, 0, 10, &opt, &res) < 0) return 1;
-       // pixel = res.L + res.Tr * L_surface
-       printf("L=%g Tr=%g samples=%ld\n", (double)res.L[0], (double)res.Tr[0],
-              res.stats.evals);
+       fog.Li = in_scatter;
+
+       // the light described: hrm turns it into the ray's warp (samples
+       // where the light is) and breakpoints
+       memset(&lamp, 0, sizeof lamp);
+       lamp.kind = HRM_LIGHT_POINT;
+       for (c = 0; c < 3; ++c) lamp.position[c] = (hrm_real)s.light[c];
+       lamp.power = (hrm_real)s.I;
+       opt.rtol = (hrm_real)1e-3;           // the relative error of L you accept
+       if (hrm_light_options(&lamp, 1, NULL, 0, origin, dir, t0, t1, &plan, &opt) != HRM_OK) return 1;
+
+       st = hrm_solve(&fog, t0, t1, &opt, &res);
+       if (st < 0) return 1;
+       // pixel = res.L + res.Tr * (the radiance of the surface at t1)
+       for (c = 0; c < HRM_CHANNELS; ++c)
+           printf("L[%d] = %.6g  Tr[%d] = %.6g\n", c, (double)res.L[c], c, (double)res.Tr[c]);
+       printf("%s, %ld Li calls\n", hrm_status_string(st), res.stats.evals);
        return 0;
    }
    ---- quick start end ----
@@ -350,7 +381,7 @@
    ==========================================================================
    TOLERANCES (adaptive methods)
    ==========================================================================
-   rtol (default 1e-4) and atol (default 0) bound the GLOBAL error of L, per
+   rtol (default 1e-3) and atol (default 0) bound the GLOBAL error of L, per
    channel:  |L - L_exact| <~ rtol*|L| + atol.
    - Nested Simpson and global Gauss-Kronrod refine worst first: the
      interval with the largest error estimate is split until the estimates
@@ -902,7 +933,7 @@ typedef enum hrm_status {
     HRM_STATUS_END_ /* not a status */
 } hrm_status;
 
-/* Methods. HRM_METHOD_DEFAULT (0) lets hrm choose (currently HRM_SIMPSON).
+/* Methods. HRM_METHOD_DEFAULT (0) lets hrm choose (HRM_NESTED_SIMPSON).
    One list: the enum, the names and the implementation's method table
    (family, default steps, order on smooth integrands, whether the RTE form
    applies, tableau) come from it, so they cannot drift apart. */
@@ -1057,7 +1088,7 @@ typedef struct hrm_options {
     int stratified;     /* Monte Carlo: nonzero takes one sample per segment */
 
     /* Adaptive methods (see TOLERANCES in the manual). */
-    hrm_real rtol;      /* relative tolerance on L and tau. 0: 1e-4. Typical:
+    hrm_real rtol;      /* relative tolerance on L and tau. 0: 1e-3. Typical:
                            1e-2 (previews) to 1e-6; clipped at 100 epsilons */
     hrm_real atol;      /* absolute tolerance on L. 0: none */
     hrm_real h_min;     /* smallest step or interval, in the integration
@@ -5837,11 +5868,11 @@ HRM__DEF hrm_options hrm_default_options(hrm_method method)
 {
     hrm_options o;
     memset(&o, 0, sizeof o);
-    o.method = method == HRM_METHOD_DEFAULT ? HRM_SIMPSON : method;
+    o.method = method == HRM_METHOD_DEFAULT ? HRM_NESTED_SIMPSON : method;
     if ((int)o.method > 0 && (int)o.method < (int)HRM_METHOD_COUNT)
         o.steps = hrm__methods[o.method].steps;
     o.form = HRM_FORM_OPTICAL_DEPTH;
-    o.rtol = HRM__R(1e-4);
+    o.rtol = HRM__R(1e-3);
     o.max_evals = 100000;
     o.control = HRM_CONTROL_PI;
     o.gk_mode = HRM_GK_GLOBAL;

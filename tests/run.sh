@@ -145,16 +145,26 @@ else
     echo "alloc: build failed"; cat "$B/alloc.log"; fail=$((fail + 1))
 fi
 
-# The quick start in hrm.h's top comment compiles and runs as printed.
+# The quick start in hrm.h's top comment is the README's, and compiles and
+# runs as printed: as C, as C++, in float and with one channel.
 configs=$((configs + 1))
 sed -n '/---- quick start begin ----/,/---- quick start end ----/p' hrm.h |
     sed '1d;$d' | sed 's/^   //' > "$B/quickstart.c"
-if gcc -std=c99 -O2 $WARN -I. "$B/quickstart.c" -o "$B/quickstart" -lm 2> "$B/quickstart.log" &&
-   "$B/quickstart" > "$B/quickstart.out"; then
-    pass=$((pass + 1)); echo "quickstart: compiles and runs: $(cat "$B/quickstart.out")"
+sed -n '/^## Quick start/,/^## /p' README.md | sed -n '/^```c$/,/^```$/p' | sed '1d;$d' > "$B/quickstart_readme.c"
+if cmp -s "$B/quickstart.c" "$B/quickstart_readme.c"; then
+    pass=$((pass + 1))
 else
-    echo "quickstart: FAILED"; cat "$B/quickstart.log"; fail=$((fail + 1))
+    echo "quickstart: the README's differs from the manual's"; diff "$B/quickstart.c" "$B/quickstart_readme.c" | head -20
+    fail=$((fail + 1))
 fi
+for qs in "gcc -std=c99" "g++ -x c++ -std=c++11" "gcc -std=c99 -DHRM_REAL=float" "gcc -std=c99 -DHRM_CHANNELS=1"; do
+    if $qs -O2 $WARN -I. "$B/quickstart.c" -o "$B/quickstart" -lm 2> "$B/quickstart.log" &&
+       "$B/quickstart" > "$B/quickstart.out" && grep -q "^ok, " "$B/quickstart.out"; then
+        pass=$((pass + 1)); echo "quickstart ($qs): $(tail -1 "$B/quickstart.out")"
+    else
+        echo "quickstart ($qs): FAILED"; cat "$B/quickstart.log" "$B/quickstart.out"; fail=$((fail + 1))
+    fi
+done
 
 # The examples build with warnings as errors (make render and the per-ray
 # example run them; here they only have to compile).

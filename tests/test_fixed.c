@@ -1478,26 +1478,27 @@ static void test_defaults(void)
     scene sc;
     problem p;
     hrm_medium med;
-    hrm_options zero, simpson32, d;
+    hrm_options zero, nested, d;
     hrm_result rn, rz, rs, rd;
     int mi;
     scene_init(&sc);
     p = fixed_problem(&sc, P_HET, 1, 1, 0);
     med = problem_medium(&p);
     memset(&zero, 0, sizeof zero);
-    simpson32 = zero;
-    simpson32.method = HRM_SIMPSON;
-    simpson32.steps = 32;
+    nested = zero;
+    nested.method = HRM_NESTED_SIMPSON;
+    nested.rtol = (hrm_real)1e-3;
     d = hrm_default_options(HRM_METHOD_DEFAULT);
     CHECK_INT(hrm_solve(&med, 1, 5, NULL, &rn), HRM_OK, "options NULL: status");
     CHECK_INT(hrm_solve(&med, 1, 5, &zero, &rz), HRM_OK, "all-zero options: status");
-    CHECK_INT(hrm_solve(&med, 1, 5, &simpson32, &rs), HRM_OK, "Simpson 32: status");
+    CHECK_INT(hrm_solve(&med, 1, 5, &nested, &rs), HRM_OK, "nested Simpson, rtol 1e-3: status");
     CHECK_INT(hrm_solve(&med, 1, 5, &d, &rd), HRM_OK, "hrm_default_options(DEFAULT): status");
-    /* the default method is Simpson with 32 panels: 65 evaluations */
-    CHECK_INT(rn.stats.evals, 65, "options NULL: Simpson with 32 panels");
-    CHECK_INT(rn.stats.steps, 32, "options NULL: 32 steps");
+    /* the default method is nested Simpson at rtol 1e-3 (what make
+       render's three scenes pick: the manual's DEFAULTS) */
+    CHECK_INT(d.method, HRM_NESTED_SIMPSON, "the default method: nested Simpson");
+    CHECK(d.rtol == (hrm_real)1e-3, "the default rtol: 1e-3");
     CHECK(same_result(&rn, &rz), "options NULL and all-zero options agree bit for bit");
-    CHECK(same_result(&rn, &rs), "options NULL and Simpson with 32 panels agree bit for bit");
+    CHECK(same_result(&rn, &rs), "options NULL and nested Simpson at rtol 1e-3 agree bit for bit");
     CHECK(same_result(&rn, &rd), "options NULL and hrm_default_options(HRM_METHOD_DEFAULT) agree");
     /* hrm_default_options(m) = all-zero with the method set; form 0 is the
        optical-depth form */
