@@ -1664,7 +1664,7 @@ typedef struct hrm__method_info {
 } hrm__method_info;
 
 static const hrm__method_info hrm__methods[HRM_METHOD_COUNT] = {
-    {"default", HRM__FIXED_QUAD, 32, 4, 0, 0}, /* resolved to HRM_SIMPSON first */
+    {"default", HRM__FIXED_QUAD, 32, 4, 0, 0}, /* never read: resolved to HRM_NESTED_SIMPSON first */
 #define HRM__METHOD_INFO(name, text, family, steps, order, rte, tableau) \
     {text, family, steps, order, rte, tableau},
     HRM__METHOD_LIST(HRM__METHOD_INFO)

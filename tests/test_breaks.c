@@ -477,6 +477,29 @@ static double br_slab_L(double lo, double hi)
            exp(-b) * 0.8 * (1 - exp(-0.05 * (10 - hi)));
 }
 
+/* A solve of the medium (sa, ss) lit by Li = 1 over [0, 10] at rtol:
+   HRM_OK, L within 3 rtol of want, and the medium scan's cost (its medium
+   calls over those of the same solve with find_jumps -1) at most scan. */
+static hrm_result br_scan_cost(hrm_method method, double rtol, hrm_spectrum_fn sa, hrm_spectrum_fn ss,
+                               double want, long scan, const char *what)
+{
+    hrm_medium m;
+    hrm_options o = hrm_default_options(method);
+    hrm_result r, off;
+    memset(&m, 0, sizeof m);
+    m.sigma_a = sa;
+    m.sigma_s = ss;
+    m.Li = br_one;
+    o.rtol = (hrm_real)rtol;
+    CHECK_INT(hrm_solve(&m, 0, 10, &o, &r), HRM_OK, "%s, %s: status", hrm_method_name(method), what);
+    CHECK_REL(r.L[0], want, 3 * rtol, "%s, %s: L", hrm_method_name(method), what);
+    o.find_jumps = -1;
+    hrm_solve(&m, 0, 10, &o, &off);
+    CHECK(r.stats.medium_evals - off.stats.medium_evals <= scan, "%s, %s: the scan costs %ld medium calls",
+          hrm_method_name(method), what, r.stats.medium_evals - off.stats.medium_evals);
+    return r;
+}
+
 static void br_scan(void)
 {
     static const hrm_method ms[] = {HRM_NESTED_SIMPSON, HRM_GAUSS_KRONROD, HRM_BOGACKI_SHAMPINE,
@@ -591,49 +614,21 @@ static void br_scan(void)
     for (mi = 0; mi < 7; ++mi) {
         /* the medium fades out at the ray's ends (sigma_t 0 at t0 and t1):
            no edge to locate there (within 1/64 of tau_tol of the end: a
-           few halvings, no sliver of a piece); L = 0.8 (1 - e^-2) */
-        hrm_medium m;
-        hrm_options o = hrm_default_options(ms[mi]);
-        hrm_result r, off;
-        memset(&m, 0, sizeof m);
-        m.sigma_a = br_fade_a;
-        m.sigma_s = br_fade_s;
-        m.Li = br_one;
-        o.rtol = (hrm_real)rtol;
-        CHECK_INT(hrm_solve(&m, 0, 10, &o, &r), HRM_OK, "%s, faded ends: status", hrm_method_name(ms[mi]));
+           few halvings, no sliver of a piece); L = 0.8 (1 - e^-2). The
+           scan: 33 samples, a few halvings at each end (each end's
+           bracket holds 1/64 of tau_tol after about log2 of 2e3 / tau_tol
+           / 4, cubed: the fade is quadratic) and what the layer
+           reproduces */
+        hrm_result r = br_scan_cost(ms[mi], rtol, br_fade_a, br_fade_s, 0.8 * -expm1(-2.0), 33 + 2 * 8 + 2 * 17,
+                                    "faded ends");
         CHECK_INT(r.njumps, 0, "%s, faded ends: no edge made a breakpoint", hrm_method_name(ms[mi]));
-        CHECK_REL(r.L[0], 0.8 * -expm1(-2.0), 3 * rtol, "%s, faded ends: L", hrm_method_name(ms[mi]));
         CHECK_REL(r.Tr[0], exp(-2.0), 3 * rtol, "%s, faded ends: Tr", hrm_method_name(ms[mi]));
-        o.find_jumps = -1;
-        hrm_solve(&m, 0, 10, &o, &off);
-        /* 33 samples, a few halvings at each end (each end's bracket
-           holds 1/64 of tau_tol after about log2 of 2e3 / tau_tol / 4,
-           cubed: the fade is quadratic) and what the layer reproduces */
-        CHECK(r.stats.medium_evals - off.stats.medium_evals <= 33 + 2 * 8 + 2 * 17,
-              "%s, faded ends: the scan costs %ld medium calls", hrm_method_name(ms[mi]),
-              r.stats.medium_evals - off.stats.medium_evals);
-    }
-    for (mi = 0; mi < 7; ++mi) {
         /* behind a dense front (tau 20 per unit) the scan stops once its
            trapezoid tau passes 2 ln(64 / rtol) (31 at 1e-5, 22 at 1e-3:
            after 6 or 4 of its 32 intervals): the jump at 5 and the slab
-           behind are not searched for. L = 0.8 (1 - Tr), Tr = e^-102.7:
-           0.8 to round-off */
-        hrm_medium m;
-        hrm_options o = hrm_default_options(ms[mi]);
-        hrm_result r, off;
-        memset(&m, 0, sizeof m);
-        m.sigma_a = br_deep_a;
-        m.sigma_s = br_deep_s;
-        m.Li = br_one;
-        o.rtol = (hrm_real)rtol;
-        CHECK_INT(hrm_solve(&m, 0, 10, &o, &r), HRM_OK, "%s, dense front: status", hrm_method_name(ms[mi]));
-        CHECK_REL(r.L[0], 0.8, 3 * rtol, "%s, dense front: L", hrm_method_name(ms[mi]));
-        o.find_jumps = -1;
-        hrm_solve(&m, 0, 10, &o, &off);
-        CHECK(r.stats.medium_evals - off.stats.medium_evals <= 8,
-              "%s, dense front: the scan costs %ld medium calls (its first 7 samples)",
-              hrm_method_name(ms[mi]), r.stats.medium_evals - off.stats.medium_evals);
+           behind are not searched for, its first 7 samples taken. L =
+           0.8 (1 - Tr), Tr = e^-102.7: 0.8 to round-off */
+        br_scan_cost(ms[mi], rtol, br_deep_a, br_deep_s, 0.8, 8, "dense front");
     }
 }
 

@@ -268,6 +268,23 @@ static void tr_constant_sigma(void)
             }
 }
 
+/* The options of the ray from the origin along +x, [0, 10], lit by two
+   point lights of power 1: one at (a, d, 0), one 1 off the ray at b (the
+   mixture warp of hrm_light_options). */
+static void tr_two_lights(double a, double d, double b, hrm_ray_plan *plan, hrm_options *o)
+{
+    hrm_light l[2];
+    hrm_real O[3] = {0, 0, 0}, Dir[3] = {1, 0, 0};
+    memset(l, 0, sizeof l);
+    l[0].kind = l[1].kind = HRM_LIGHT_POINT;
+    l[0].power = l[1].power = 1;
+    l[0].position[0] = (hrm_real)a;
+    l[0].position[1] = (hrm_real)d;
+    l[1].position[0] = (hrm_real)b;
+    l[1].position[2] = 1;
+    CHECK_INT(hrm_light_options(l, 2, NULL, 0, O, Dir, 0, 10, plan, o), HRM_OK, "two lights: options");
+}
+
 /* 1b. What the sigma callbacks cost in source evaluations: on a constant
    medium the layer's tau is exact, so nothing about the medium should
    move the adaptive rules. Each adaptive method, no warp, the distance
@@ -308,19 +325,7 @@ static void tr_constant_cost(void)
                 if (!tr_adaptive(m) || (real_is_float() && w == 4)) continue;
                 p.D = w >= 2 && w <= 4 ? Ds[w - 2] : 0.2;
                 o = tr_options(m, 0, rtol, w == 1 ? 2 : w >= 2 && w <= 4 ? 1 : 0, &p);
-                if (w == 5) {
-                    hrm_light l[2];
-                    hrm_real O[3] = {0, 0, 0}, Dir[3] = {1, 0, 0};
-                    memset(l, 0, sizeof l);
-                    l[0].kind = l[1].kind = HRM_LIGHT_POINT;
-                    l[0].power = l[1].power = 1;
-                    l[0].position[0] = 5;
-                    l[0].position[1] = (hrm_real)0.2;
-                    l[1].position[0] = 2;
-                    l[1].position[2] = 1;
-                    CHECK_INT(hrm_light_options(l, 2, NULL, 0, O, Dir, 0, 10, &plan, &o), HRM_OK,
-                              "two lights: options");
-                }
+                if (w == 5) tr_two_lights(5, 0.2, 2, &plan, &o);
                 mc = tr_make(&p, 1, 0);
                 ms = tr_make(&p, 0, 0);
                 CHECK_INT(hrm_solve(&mc, 0, 10, &o, &rc), HRM_OK, "%s warp %d rtol %g: constants",
@@ -460,19 +465,7 @@ static void tr_stream_counts(void)
                     long allowed = 2L * (b && ns[k] < 3 ? 3 : ns[k]) + 8 + 2 * b * 2 +
                                    (m == HRM_SIMPSON || m == HRM_RK4 ? 9 : 0);
                     if (tr_adaptive(m) || m == HRM_ANALYTIC_MARCH) continue;
-                    if (w == 2) {
-                        hrm_light l[2];
-                        hrm_real O[3] = {0, 0, 0}, Dir[3] = {1, 0, 0};
-                        memset(l, 0, sizeof l);
-                        l[0].kind = l[1].kind = HRM_LIGHT_POINT;
-                        l[0].power = l[1].power = 1;
-                        l[0].position[0] = 4;
-                        l[0].position[1] = (hrm_real)0.3;
-                        l[1].position[0] = 8;
-                        l[1].position[2] = 1;
-                        CHECK_INT(hrm_light_options(l, 2, NULL, 0, O, Dir, 0, 10, &plan, &o), HRM_OK,
-                                  "two lights: options");
-                    }
+                    if (w == 2) tr_two_lights(4, 0.3, 8, &plan, &o);
                     if (b) {
                         o.breaks = brk;
                         o.nbreaks = 2;
