@@ -2823,35 +2823,38 @@ static void hrm__map(hrm__ctx *c, hrm_real p, hrm_real *off, hrm_real *J)
 
 /* The stream's level: the width w such that cutting each gap of the
    method's grid in t (M equal steps in the warp's variable) into pieces
-   no wider than w takes at most the extra points allowed; bisection on
-   w between 0 and the widest gap. Not for a user warp, whose map is the
-   host's to call (and may cost a Newton solve a node): there
-   hrm__stream_to gives each gap its share of the points left by length. */
+   no wider than w takes at most the extra points allowed. Only the
+   widest HRM__STREAM_EXTRA + 1 gaps can take a point: one pass keeps them,
+   then each point in turn goes to the gap whose pieces are widest (water
+   filling), and the level is the widest piece left. Not for a user warp,
+   whose map is the host's to call (and may cost a Newton solve a node):
+   there hrm__stream_to gives each gap its share of the points left by
+   length. */
 static void hrm__stream_level(hrm__ctx *c, long M)
 {
-    hrm_real lo = 0, hi = 0, J, a, b;
+    hrm_real top[HRM__STREAM_EXTRA + 1], J, a, b, g;
+    int n[HRM__STREAM_EXTRA + 1], ntop = 0, e, i, j, best;
     long k;
-    int it;
     c->sm.level = 0; /* none: hrm__stream_to shares what is left */
-    if (M < 1 || c->sm.extra < 1 || M > 1000000 || c->warp == HRM_WARP_USER) return;
+    if (M < 1 || c->sm.extra < 1 || c->warp == HRM_WARP_USER) return;
     for (k = 0, a = 0; k < M; ++k, a = b) {
         hrm__map(c, c->pa + (c->pb - c->pa) * ((hrm_real)(k + 1) / (hrm_real)M), &b, &J);
-        if (b - a > hi) hi = b - a;
+        g = b - a;
+        if (!(g > 0) || (ntop == HRM__STREAM_EXTRA + 1 && g <= top[ntop - 1])) continue;
+        /* insert, widest first */
+        for (i = ntop < HRM__STREAM_EXTRA + 1 ? ntop++ : ntop - 1; i > 0 && top[i - 1] < g; --i) top[i] = top[i - 1];
+        top[i] = g;
     }
-    if (!(hi > 0)) return;
-    for (it = 0; it < 24; ++it) {
-        hrm_real w = lo / 2 + hi / 2, need = 0;
-        for (k = 0, a = 0; k < M && need <= (hrm_real)c->sm.extra; ++k, a = b) {
-            hrm__map(c, c->pa + (c->pb - c->pa) * ((hrm_real)(k + 1) / (hrm_real)M), &b, &J);
-            if (b - a > w) need += (b - a) / w > (hrm_real)c->sm.extra ? (hrm_real)c->sm.extra + 1
-                                                                      : (hrm_real)(hrm__pieces((b - a) / w) - 1);
-        }
-        if (need <= (hrm_real)c->sm.extra) hi = w;
-        else lo = w;
+    if (ntop == 0) return;
+    for (i = 0; i < ntop; ++i) n[i] = 0;
+    for (e = 0; e < c->sm.extra; ++e) {
+        for (j = 0, best = 0; j < ntop; ++j)
+            if (top[j] / (hrm_real)(n[j] + 1) > top[best] / (hrm_real)(n[best] + 1)) best = j;
+        n[best]++;
     }
-    c->sm.level = hi;
+    for (j = 0; j < ntop; ++j)
+        if (top[j] / (hrm_real)(n[j] + 1) > c->sm.level) c->sm.level = top[j] / (hrm_real)(n[j] + 1);
 }
-
 
 /* How far the distance warp may reach: the offset x from t0 where the
    thinnest channel's tau reaches `reach` (or the end, x = T), and that tau
