@@ -659,8 +659,8 @@
    80-156, 23-50 and 82-171, and a fifth of the medium calls); not where
    it lies against the ray's end or a breakpoint, within a width whose
    sigma_t could hold 1/64 of tau_tol (a sphere of smoke that fades out
-   at its surface, entered and left by the ray: a few calls at each end
-   instead of about 50, and no sliver of a piece at t0 to warn on). Where
+   at its surface, entered and left by the ray: a few calls at each end,
+   and no sliver of a piece at t0 to warn on). Where
    neighbours differ and no jump is found (a steep smooth change),
    the larger sample is given to the transmittance layer,
    whose panels must then reproduce it: a blob a few scan points wide is
@@ -4332,7 +4332,8 @@ static hrm_real hrm__newton_top(const hrm__nodes_info *ni, hrm_real *d, hrm_real
    same increment of tau over [a, b] (whose exact integral is the same),
    so that what dt/du alone costs the rule cancels and a constant medium
    is never refined for it (nested Simpson, a light 1e-3 from the ray:
-   2.9 times the source evaluations of the closed form, before). em
+   2.9 times the source evaluations of the closed form where the rule
+   was compared with the exact integral). em
    receives the miss in L's units, per channel; w are the weights of the
    rule on [a, b] (length h in p), pt its nodes, tau_a and tau_b the
    layer's tau at the interval's ends, off_a and off_b their offsets. */
