@@ -670,7 +670,10 @@
    returned Tr = 1 and L = 0 with HRM_OK (the truth: Tr = 0.69), and the
    cloud of `make render` stalled at RMSE 1e-2 with the defaults. The
    cost is 33 medium calls, about 50 more per jump, a few per steep
-   smooth change; no source evaluation. The transmittance layer, too, checks the source
+   smooth change; no source evaluation. It ends where the trapezoid rule
+   on its own samples puts the thinnest channel's tau past
+   2 ln(64 / rtol): behind that no jump moves L by a share of rtol (a
+   cloud's core: a quarter of a camera ray's lookups). The transmittance layer, too, checks the source
    nodes' sigma_a and sigma_s against what its panel sampled: a node above
    twice that means the panel stepped over a dense slab, and the solve is
    repeated with the layer sampling there. What none of this sees is a
