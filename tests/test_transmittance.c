@@ -207,6 +207,19 @@ static int tr_settled(hrm_status st)
 
 static const char *const tr_warp_names[] = {"none", "equiangular", "distance", "distance 0.6"};
 
+/* The constant medium of tests 1 and 1b: sigma_t 0.6, albedo 5/6, lit
+   by a point light of intensity 1, D from the ray, projecting at 5. */
+static void tr_constant(tr_medium *p, double D)
+{
+    memset(p, 0, sizeof *p);
+    p->a = 0.6;
+    p->pa = 1.0 / 6;
+    p->point = 1;
+    p->I = 1;
+    p->D = D;
+    p->delta = 5;
+}
+
 /* 1. A constant sigma_t through callbacks gives the L and Tr of the same
    medium as constants, under every warp, for every method, in both tau
    modes. The two differ by round-off alone: each abscissa adds a relative
@@ -217,13 +230,7 @@ static void tr_constant_sigma(void)
 {
     tr_medium p;
     int mi, w, mode, c;
-    memset(&p, 0, sizeof p);
-    p.a = 0.6;
-    p.pa = 1.0 / 6;
-    p.point = 1;
-    p.I = 1;
-    p.D = 0.2;
-    p.delta = 5;
+    tr_constant(&p, 0.2);
     for (w = 0; w < 4; ++w)
         for (mi = 0; mi < TR_NMETHODS; ++mi)
             for (mode = HRM_TAU_DECOUPLED; mode <= HRM_TAU_COUPLED; ++mode) {
@@ -306,12 +313,7 @@ static void tr_constant_cost(void)
     tr_medium p;
     int mi, w, ir, nr = real_is_float() ? 2 : 5;
     double worst = 0;
-    memset(&p, 0, sizeof p);
-    p.a = 0.6;
-    p.pa = 1.0 / 6;
-    p.point = 1;
-    p.I = 1;
-    p.delta = 5;
+    tr_constant(&p, 0.2);
     for (mi = 0; mi < TR_NMETHODS; ++mi)
         for (w = 0; w < 6; ++w)
             for (ir = 0; ir < nr; ++ir) {
