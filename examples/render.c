@@ -430,6 +430,7 @@ typedef struct ray {
     double o[3], d[3];        /* origin, unit direction */
     int lights;               /* which lights Li sums */
     long li, traced, lookups; /* what the ray cost, counted here */
+    long shadow_lookups;      /* of the lookups, those of its shadow rays */
     hrm_status shadow_status; /* the first shadow ray's problem */
 } ray;
 
@@ -525,6 +526,7 @@ static void shadow_ray(ray *r, const double p[3], const double d[3], double dist
     m.sigma_t = dens_sigma_t;
     st = hrm_transmittance(&m, (hrm_real)ta, (hrm_real)tb, &s->shadow, Tr, NULL);
     r->lookups += sr.lookups;
+    r->shadow_lookups += sr.lookups;
     if (st != HRM_OK && r->shadow_status == HRM_OK) r->shadow_status = st;
 }
 
@@ -1003,7 +1005,7 @@ typedef struct pixel_out {
     int mask[2];       /* the lights of each solve */
     hrm_status st[2];  /* each solve's status */
     double tr;         /* Tr of the camera ray (green) */
-    long li, traced, lookups;
+    long li, traced, lookups, shadow_lookups;
     unsigned warned;   /* bit s: a solve or shadow ray returned status s
                           (warnings 1..14; bit 15: an error) */
 } pixel_out;
@@ -1169,6 +1171,7 @@ static void shade(const scene *s, const config *cf, double q, int x, int y, doub
     po->li = r.li;
     po->traced = r.traced;
     po->lookups = r.lookups;
+    po->shadow_lookups = r.shadow_lookups;
 }
 
 /* ======================================================================
@@ -1185,6 +1188,7 @@ typedef struct frame {
     unsigned char *mask;/* w * h * 2: its lights (0: no solve) */
     double *tr;         /* w * h: Tr of the camera ray (green) */
     long li, traced, lookups; /* over the image */
+    long shadow_lookups;      /* of the lookups, the shadow rays' */
     long warned;        /* pixels whose solve or shadow ray warned */
     long by[16];        /* of them, those with status s (bit 15: errors) */
     double cpu;         /* thread CPU seconds, summed */
@@ -1196,7 +1200,7 @@ typedef struct job {
     double q;
     frame *f;
     int first, stride;
-    long li, traced, lookups, warned, by[16];
+    long li, traced, lookups, shadow_lookups, warned, by[16];
     double cpu;
 } job;
 
@@ -1246,6 +1250,7 @@ static void *worker(void *arg)
             j->li += po.li;
             j->traced += po.traced;
             j->lookups += po.lookups;
+            j->shadow_lookups += po.shadow_lookups;
             j->warned += po.warned != 0;
             for (k = 0; k < 16; ++k) j->by[k] += (po.warned >> k) & 1u;
         }
@@ -1265,7 +1270,7 @@ static void render(const scene *s, const config *cf, double q, frame *f)
     pthread_t th[64];
     job jobs[64];
     int i, k, n = nthreads();
-    f->li = f->traced = f->lookups = f->warned = 0;
+    f->li = f->traced = f->lookups = f->shadow_lookups = f->warned = 0;
     f->cpu = 0;
     memset(f->by, 0, sizeof f->by);
     for (i = 0; i < n; ++i) {
@@ -1283,6 +1288,7 @@ static void render(const scene *s, const config *cf, double q, frame *f)
         f->li += jobs[i].li;
         f->traced += jobs[i].traced;
         f->lookups += jobs[i].lookups;
+        f->shadow_lookups += jobs[i].shadow_lookups;
         f->warned += jobs[i].warned;
         f->cpu += jobs[i].cpu;
         for (k = 0; k < 16; ++k) f->by[k] += jobs[i].by[k];
@@ -1390,6 +1396,7 @@ typedef struct rung_result {
     double q, rmse[2];   /* rmse[0] without the pixels next to the light,
                             rmse[1] over all */
     double cost[NCOST];  /* per pixel (CPU: seconds for the image) */
+    double camera;       /* of the lookups per pixel, the camera rays' */
     long silent, alarms; /* -1: not judged (fixed-step methods) */
     char warned[96];     /* pixels warned, by status */
 } rung_result;
@@ -1666,7 +1673,7 @@ static int study(const scene *s, const config *cfg, int ncfg, double budget, dou
         image8_free(&im);
     }
 
-    fprintf(md, "| configuration | budget | Li / px | traced / px | lookups / px | CPU s | relative RMSE "
+    fprintf(md, "| configuration | budget | Li / px | traced / px | lookups / px (camera rays) | CPU s | relative RMSE "
                 "| all pixels | pixels warned | silent | false alarms |\n");
     fprintf(md, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     for (i = 0; i < ncfg; ++i) {
@@ -1681,12 +1688,13 @@ static int study(const scene *s, const config *cfg, int ncfg, double budget, dou
             r->rmse[0] = rel_rmse(&work, &ref, 0);
             r->rmse[1] = rel_rmse(&work, &ref, 1);
             frame_costs(&work, r->cost);
+            r->camera = (double)(work.lookups - work.shadow_lookups) / ((double)s->w * s->h);
             warned_text(&work, r->warned, sizeof r->warned);
             r->silent = r->alarms = -1;
             if (adaptive(&cfg[i])) judge(&work, &ref, r->q, atol, &r->silent, &r->alarms);
-            fprintf(md, "| %s | %s | %.1f | %.1f | %.1f | %.3f | %.3g | %.3g | %s |", cfg[i].name,
+            fprintf(md, "| %s | %s | %.1f | %.1f | %.1f (%.1f) | %.3f | %.3g | %.3g | %s |", cfg[i].name,
                     label_of(&cfg[i], r->q, buf, sizeof buf), r->cost[C_LI], r->cost[C_TRACED],
-                    r->cost[C_LOOKUPS], r->cost[C_CPU], r->rmse[0], r->rmse[1], r->warned);
+                    r->cost[C_LOOKUPS], r->camera, r->cost[C_CPU], r->rmse[0], r->rmse[1], r->warned);
             if (r->silent >= 0)
                 fprintf(md, " %ld | %ld |\n", r->silent, r->alarms);
             else
@@ -1833,7 +1841,7 @@ int main(int argc, char **argv)
                 "the pixels whose ray meets the medium, every channel: without the pixels whose ray "
                 "passes within one pixel's footprint of the point or spot light, and over all. Costs "
                 "per pixel: Li calls; traced shadow rays (the rays towards a light that Li traces); "
-                "density lookups (camera and shadow rays; the shafts' medium is constant: none); CPU "
+                "density lookups (camera and shadow rays, in brackets the camera rays' alone; the shafts' medium is constant: none); CPU "
                 "seconds for the image (thread CPU time summed over %d threads, this machine). "
                 "Baselines (MARCH ...): hand-written, per-step analytic extinction, one jittered "
                 "offset per pixel. Silent: pixels with a camera solve that returned HRM_OK off the "
