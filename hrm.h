@@ -2190,6 +2190,9 @@ static void hrm__stream_interval(const hrm__stream *S, int i, int m, hrm_real d[
     }
 }
 
+/* The stream's last point's index in its window. */
+static int hrm__stream_last(const hrm__stream *S) { return (S->n < 4 ? S->n : 4) - 1; }
+
 /* The stream's next point, offset x beyond the last, sigma_t f. An
    interval is integrated for good (tc, up to point ci) once a point
    beyond its right end has come (the first of a piece: two), by the
@@ -2236,7 +2239,8 @@ static long hrm__pieces(hrm_real q)
 }
 
 /* Advance the stream to offset x: extra samples, evenly spaced, where
-   the gap from the last point exceeds the stream's gap, then x itself
+   the gap from the last point is wider than the stream's level (a user
+   warp: the gap's share by length of the points left), then x itself
    (sigma_t f there, or NULL: sampled, on side `side` of a breakpoint).
    The first point of a piece is its start (sampled on its side). */
 static void hrm__stream_to(hrm__ctx *c, hrm_real x, int side, const hrm_real *f)
@@ -2258,11 +2262,11 @@ static void hrm__stream_to(hrm__ctx *c, hrm_real x, int side, const hrm_real *f)
         hrm__stream_push(S, x, f);
         return;
     }
-    last = S->x[(S->n < 4 ? S->n : 4) - 1];
+    last = S->x[hrm__stream_last(S)];
     if (!(x > last)) return;
     if (x - last <= 4 * HRM__EPS * HRM_FABS(x)) {
         /* the same offset but for rounding: its value, no interval */
-        if (f) memcpy(S->f[(S->n < 4 ? S->n : 4) - 1], f, sizeof S->f[0]);
+        if (f) memcpy(S->f[hrm__stream_last(S)], f, sizeof S->f[0]);
         return;
     }
     /* the gap cut into pieces no wider than the level, while points are
@@ -2278,7 +2282,7 @@ static void hrm__stream_to(hrm__ctx *c, hrm_real x, int side, const hrm_real *f)
     S->left -= k;
     for (j = 1; j <= k && c->status == HRM_OK; ++j) {
         hrm_real xe = last + (x - last) * (hrm_real)j / (hrm_real)(k + 1);
-        if (!(xe > S->x[(S->n < 4 ? S->n : 4) - 1] && xe < x)) continue; /* (rounding) */
+        if (!(xe > S->x[hrm__stream_last(S)] && xe < x)) continue; /* (rounding) */
         hrm__sigma_t_at(c, xe, 0, st);
         hrm__stream_push(S, xe, st);
     }
@@ -4347,10 +4351,11 @@ static void hrm__medium_miss(const hrm__ctx *c, const hrm__pt *const *pt, const 
     int i, j;
     for (i = 0; i < HRM__CH; ++i) {
         hrm_real d = tau_b[i] - tau_a[i], A, M = 0, MT = 0, Q = 0, Mabs = 0, M0 = 0, rel, R, dd;
-        hrm_real sbar = off_b > off_a ? d / (off_b - off_a) : 0, dev = 0, e0;
+        hrm_real sbar = off_b > off_a ? d / (off_b - off_a) : 0, e0, tra = HRM_EXP(-tau_a[i]);
+        int dev = 0;
         em[i] = 0;
         if (!(d > 0)) continue;
-        A = HRM_EXP(-tau_a[i]) * -HRM_EXPM1(-d);
+        A = tra * -HRM_EXPM1(-d);
         if (!(A > 64 * HRM__EPS)) continue; /* Tr is 0 there: no light to miss */
         for (j = 0; j < n; ++j) {
             /* the homogeneous medium's sigma_t (Tr) ds/dp at the node */
@@ -4384,7 +4389,7 @@ static void hrm__medium_miss(const hrm__ctx *c, const hrm__pt *const *pt, const 
             rel = rel > 0 ? rel / d : 0;
         } else {
             e0 = HRM_FABS(M0 - A);
-            rel = (e0 < A / 2 || !dev ? HRM_FABS(MT - M0) : HRM_FABS(MT - A)) - HRM_EXP(-tau_a[i]) * dd;
+            rel = (e0 < A / 2 || !dev ? HRM_FABS(MT - M0) : HRM_FABS(MT - A)) - tra * dd;
             rel = rel > 0 ? rel / A : 0;
         }
         R = MT > 0 ? HRM_FABS(Q) / MT : 0;
@@ -5950,12 +5955,11 @@ static hrm_status hrm__resolve(const hrm_options *in, hrm_options *o, int tau_in
     /* fixed-step methods: tau from their own nodes (what N says, in sigma
        too) without a warp or a fit, and where tau alone is integrated in
        t (tau_in_t: hrm_transmittance on a finite ray, which ignores the
-       warp); the layer under a warp, which spaces the nodes for a light,
-       not for the medium */
-    /* under a warp, the stream for the rules of order 2 at most, whose own
-       error its 16 extra samples stay below; the layer for the others
-       (make render's smoke, Simpson N = 32: RMSE 9e-3 with the stream,
-       1e-3 with the layer, for 103 and 478 lookups a pixel) */
+       warp). Under a warp, which spaces the nodes for a light, not for the
+       medium: the stream for the rules of order 2 at most, whose own error
+       its 16 extra samples stay below; the layer for the others (make
+       render's smoke, Simpson N = 32: RMSE 9e-3 with the stream, 1e-3
+       with the layer, for 103 and 478 lookups a pixel) and with a fit */
     if (o->tau_mode == HRM_TAU_DEFAULT)
         o->tau_mode = (o->warp.kind == HRM_WARP_NONE || tau_in_t) && !o->exponential ? HRM_TAU_COUPLED
                     : !o->exponential && (o->method == HRM_RECTANGLE || o->method == HRM_MONTE_CARLO ||
@@ -6081,7 +6085,8 @@ static hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, const hrm_medium *m, 
     c->use_li = !tr_only && m->Li && (c->homog || m->sigma_s || m->sigma);
     /* Tr at the nodes: a closed form where there is one (the RTE form
        integrates Tr itself, so it takes sigma_t samples even then), else
-       the transmittance layer, else the rules' own tau. */
+       the transmittance layer, the stream or the rules' own tau, as
+       options.tau_mode (resolved) says. */
     c->src = c->homog ? HRM__TAU_HOMOG
            : c->rte ? HRM__TAU_STATE
            : m->transmittance ? HRM__TAU_TRCB
@@ -6139,9 +6144,9 @@ static hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, const hrm_medium *m, 
                              : o->method == HRM_ADAMS_BASHFORTH && N >= 4 && !c->nbrk ? N + 4
                              : 2 * N + 1;
         int fourth = o->method == HRM_SIMPSON || o->method == HRM_RK4;
-        c->sm.extra = fourth || 2 * N + 8 - d > HRM__STREAM_EXTRA ? HRM__STREAM_EXTRA
-                    : 2 * N + 8 - d > 0 ? 2 * N + 8 - d : 0;
-        hrm__stream_level(c, o->method == HRM_SIMPSON || o->method == HRM_RK4 ? 2 * N : N);
+        long room = 2 * N + 8 - d;
+        c->sm.extra = fourth || room > HRM__STREAM_EXTRA ? HRM__STREAM_EXTRA : room > 0 ? room : 0;
+        hrm__stream_level(c, fourth ? 2 * N : N);
     }
 
     /* step bounds, in the parameter */
@@ -6284,10 +6289,12 @@ static void hrm__solve_pieces(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM_
     int n = c->nbrk + 1, N[HRM_MAX_BREAKS + 1], k, i, fixed;
     long max_evals = c->max_evals;
 
-    c->sm.n = 0;
-    c->sm.start = 0;
-    c->sm.left = c->sm.extra;
-    hrm__fill(c->sm.tau, HRM__CH, 0);
+    if (c->src == HRM__TAU_STREAM) {
+        c->sm.n = 0;
+        c->sm.start = 0;
+        c->sm.left = c->sm.extra;
+        hrm__fill(c->sm.tau, HRM__CH, 0);
+    }
     if (c->nbrk == 0) {
         c->scale_fixed = 0;
         hrm__fill(c->scale, HRM__NY, 0);
