@@ -631,13 +631,17 @@
    global Gauss-Kronrod, no breakpoint needed): an interval that keeps 30%
    of its parent's estimate three splits in a row does not shrink like a
    smooth integrand. Where refining it on would cost more than 64
-   evaluations (its estimate over the tolerance, halved per split), the
-   solve stops there, bisects it on the source to 4 ulps of t (about 50
-   evaluations), and where the two sides differ by at least 1% solves
-   again with that point as a breakpoint. The located points are returned
-   in hrm_result.jumps (give them as the next pixel's breakpoints); the
-   evaluations of every pass count, and some of the first pass's are
-   repeated by the next.
+   evaluations (its estimate over the tolerance, halved per split), it is
+   bisected on the source to 4 ulps of t (about 50 evaluations); where
+   the two sides then differ by at least 1% the solve stops and runs
+   again with that point as a breakpoint. A smooth integrand splits its
+   change between the halves: three halvings in a row that keep less
+   than 3/4 of it end the bisection, and the solve goes on without
+   searching again (a narrow light peak, a dense front under the
+   equiangular warp: the search costs its bisection, not a second
+   solve). The located points are returned in hrm_result.jumps (give
+   them as the next pixel's breakpoints); the evaluations of every pass
+   count, and some of the first pass's are repeated by the next.
    The medium is scanned too (find_jumps 0 in every adaptive method, 1 in
    the fixed-step ones; sigma from callbacks; on any ray that t resolves to
    4096 ulps, a ray clipped to a medium's bounds far from the origin
@@ -1783,8 +1787,8 @@ typedef struct hrm__ctx {
     long split_cost;           /* a worst-first split's evaluations */
     hrm_real wf_tol;           /* worst first: the current tolerance, summed */
     int jump_found;            /* a split found an interval that does not
-                                  shrink: cand_a, cand_b in p */
-    hrm_real cand_a, cand_b;
+                                  shrink, and a jump in it, at cand_t */
+    hrm_real cand_t;
     int njumps;
     hrm_real jumps[HRM_MAX_JUMPS]; /* located, as t */
     int layer_miss, restarts;  /* a node's sigma the layer's panel missed */
@@ -5524,10 +5528,16 @@ static void hrm__wf_trust(const hrm__ctx *c, const hrm__iv *par, hrm__iv *l, hrm
     hrm__with_miss(r->E, r->M);
 }
 
+static int hrm__locate_jump(hrm__ctx *c, hrm_real pl, hrm_real pr, hrm_real *tj);
+
 /* A half that keeps 30% of its parent's raw estimate, three splits in a
    row, does not shrink like a smooth integrand's (1/32 for nested
-   Simpson, far less for Gauss-Kronrod): a jump, most likely. It becomes
-   the candidate that hrm__dispatch locates (c->jump_found). */
+   Simpson, far less for Gauss-Kronrod): a jump, most likely. It is
+   located there and then; a jump found ends the pass (c->jump_found) and
+   hrm__dispatch solves again with it as a breakpoint. Where the bisection
+   finds none (a steep but smooth integrand: a dense front seen through
+   the equiangular warp) the solve goes on without looking again, instead
+   of being repeated. */
 static void hrm__wf_rough(hrm__ctx *c, const hrm__iv *par, hrm__iv *l, hrm__iv *r)
 {
     hrm_real dl = 0, dr = 0, dp = 0;
@@ -5555,9 +5565,10 @@ static void hrm__wf_rough(hrm__ctx *c, const hrm__iv *par, hrm__iv *l, hrm__iv *
            samples, 197 with the search) */
         splits = c->wf_tol > 0 && e > c->wf_tol ? HRM_LOG(e / c->wf_tol) / HRM_LOG(2) : 0;
         if (splits * (hrm_real)c->split_cost < 64) return;
-        c->jump_found = 1;
-        c->cand_a = v->a;
-        c->cand_b = v->b;
+        if (c->njumps < HRM_MAX_JUMPS && c->nbrk < HRM_MAX_BREAKS && hrm__locate_jump(c, v->a, v->b, &c->cand_t))
+            c->jump_found = 1;
+        else
+            c->find_jumps = 0;
     }
 }
 
@@ -6379,17 +6390,20 @@ static void hrm__source_at(hrm__ctx *c, hrm_real p, hrm_real S[HRM__CH], hrm_rea
     *off = pt.off;
 }
 
-/* Locate the jump inside the candidate [cand_a, cand_b] (in p) by
-   bisection on the source: the half whose ends differ more keeps it,
-   until its ends are 4 ulps of t apart (about 50 evaluations in double
-   on a unit interval). A jump of at least 1% of the larger side is kept,
-   as t, in *tj; returns 0 where there is none (a smooth integrand that
-   merely refines slowly). */
-static int hrm__locate_jump(hrm__ctx *c, hrm_real *tj)
+/* Locate the jump inside [pl, pr] (in p) by bisection on the source:
+   the half whose ends differ more keeps it, until its ends are 4 ulps of
+   t apart (about 50 evaluations in double on a unit interval). A smooth
+   integrand splits its change between the halves, a jump keeps all of
+   it in one: three halvings in a row that keep less than 3/4 of the
+   change end the search, as for the medium (hrm__locate_sigma_jump). A
+   jump of at least 1% of the larger side is kept, as t, in *tj; returns
+   0 where there is none (a smooth integrand that merely refines
+   slowly). */
+static int hrm__locate_jump(hrm__ctx *c, hrm_real pl, hrm_real pr, hrm_real *tj)
 {
-    hrm_real pl = c->cand_a, pr = c->cand_b, Sl[HRM__CH], Sr[HRM__CH], Sm[HRM__CH];
+    hrm_real Sl[HRM__CH], Sr[HRM__CH], Sm[HRM__CH];
     hrm_real ol, or_, om, d = 0, big = 0;
-    int it, i;
+    int it, i, smooth = 0;
     hrm__source_at(c, pl, Sl, &ol);
     hrm__source_at(c, pr, Sr, &or_);
     for (it = 0; it < 64 && c->status == HRM_OK; ++it) {
@@ -6401,6 +6415,8 @@ static int hrm__locate_jump(hrm__ctx *c, hrm_real *tj)
             dl += HRM_FABS(Sm[i] - Sl[i]);
             dr += HRM_FABS(Sr[i] - Sm[i]);
         }
+        smooth = (dl > dr ? dl : dr) < HRM__R(0.75) * (dl + dr) ? smooth + 1 : 0;
+        if (smooth >= 3) return 0;
         if (dl > dr) {
             pr = pm;
             or_ = om;
@@ -6586,7 +6602,6 @@ static void hrm__dispatch(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM__NY]
 {
     hrm_status w0 = c->warning;
     for (;;) {
-        hrm_real tj;
         c->jump_found = 0;
         c->layer_miss = 0;
         hrm__solve_pieces(c, o, y);
@@ -6609,8 +6624,7 @@ static void hrm__dispatch(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM__NY]
             return;
         }
         c->warning = w0;
-        if (c->njumps >= HRM_MAX_JUMPS || c->nbrk >= HRM_MAX_BREAKS || !hrm__locate_jump(c, &tj) ||
-            !hrm__add_jump(c, tj - c->t0)) {
+        if (!hrm__add_jump(c, c->cand_t - c->t0)) {
             c->find_jumps = 0; /* solve once more without looking */
             continue;
         }
