@@ -4,6 +4,9 @@
 #                of the test suite; the fuzz corpus replayed; threads (also
 #                under TSan) and heap allocations (tests/threads.c); ending
 #                with the line "N passed, N failed"
+#   make check   the test suite in one configuration (cc -O2, double, 3
+#                channels): the quick tier while working, about 15 s on 2
+#                cores; make test (the matrix) is what CI runs
 #   make bench   the single-ray convergence benchmark and the shadow-ray
 #                benchmark (bench/shadow.c): tables on the terminal, files
 #                in bench/out/ only (ignored by git)
@@ -29,12 +32,24 @@ CC      ?= cc
 WARN    = -Wall -Wextra -pedantic -Werror -Wshadow -Wdouble-promotion
 BUILD   = build
 
-.PHONY: all test bench bench-quick bench-snapshot render render-quick render-snapshot examples fuzz clean
+.PHONY: all test check bench bench-quick bench-snapshot render render-quick render-snapshot examples fuzz clean
 
 all: test
 
 test:
 	@sh tests/run.sh
+
+CHECK_SRC = tests/main.c tests/common.c tests/test_tables.c tests/test_fixed.c \
+            tests/test_adaptive.c tests/test_warp.c tests/test_transmittance.c \
+            tests/test_breaks.c tests/test_exponential.c tests/test_extremes.c \
+            tests/test_bad_input.c
+
+$(BUILD)/check: $(CHECK_SRC) tests/common.h tests/harness.h hrm.h
+	@mkdir -p $(BUILD)
+	$(CC) -std=c99 -O2 $(WARN) -I. $(CHECK_SRC) -o $@ -lm
+
+check: $(BUILD)/check
+	./$(BUILD)/check
 
 # The benchmark: measurement, reporting, figures and the command line, with
 # the scenes, the reference quadrature and the SVG writer (bench/README.md).

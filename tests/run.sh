@@ -166,6 +166,64 @@ for qs in "gcc -std=c99" "g++ -x c++ -std=c++11" "gcc -std=c99 -DHRM_REAL=float"
     fi
 done
 
+# Configuration limits (CONFIGURATION in the manual): the extremes of each
+# range compile, a value past one does not (a static assertion, not a stack
+# overflow at run time).
+configs=$((configs + 1))
+lim_ok=0
+lim_bad=0
+for d in "-DHRM_CHANNELS=1" "-DHRM_CHANNELS=64" "-DHRM_MAX_BREAKS=1024" "-DHRM_MAX_JUMPS=1" \
+         "-DHRM_NS_INTERVALS=8 -DHRM_NS_PANELS=8" "-DHRM_GK_INTERVALS=8 -DHRM_GK_INITIAL=8" \
+         "-DHRM_TAU_PANELS=16" "-DHRM_MAX_DEPTH=8" "-DHRM_SHADOW_PANELS=8"; do
+    if gcc -std=c99 $WARN $d -fsyntax-only -x c -DHRM_IMPLEMENTATION hrm.h 2> "$B/limits.log"; then
+        lim_ok=$((lim_ok + 1))
+    else
+        echo "limits: $d does not compile"; cat "$B/limits.log"
+    fi
+done
+for d in "-DHRM_CHANNELS=0" "-DHRM_CHANNELS=1024" "-DHRM_MAX_BREAKS=0" "-DHRM_MAX_JUMPS=257" \
+         "-DHRM_MAX_LIGHTS=0" "-DHRM_NS_PANELS=65" "-DHRM_GK_INITIAL=129" "-DHRM_TAU_PANELS=8" \
+         "-DHRM_MAX_DEPTH=201" "-DHRM_SHADOW_PANELS=4"; do
+    if gcc -std=c99 $WARN $d -fsyntax-only -x c -DHRM_IMPLEMENTATION hrm.h 2> "$B/limits.log"; then
+        echo "limits: $d compiles"
+    elif grep -q "hrm__assert_" "$B/limits.log"; then
+        lim_bad=$((lim_bad + 1))
+    else
+        echo "limits: $d fails otherwise than by its static assertion"; head -5 "$B/limits.log"
+    fi
+done
+if [ "$lim_ok" -eq 9 ] && [ "$lim_bad" -eq 10 ]; then
+    pass=$((pass + 1)); echo "limits: 9 extremes compile, 10 values past them stop at their static assertion"
+else
+    fail=$((fail + 1))
+fi
+
+# The implementation under the stricter warnings: every implicit conversion
+# that may change a value (-Wconversion, -Wsign-conversion; float and
+# double, gcc and clang) and duplicate enum values (clang).
+configs=$((configs + 1))
+conv_ok=0
+for cc in gcc clang; do
+    for r in "" "-DHRM_REAL=float"; do
+        if $cc -std=c99 $WARN -Wconversion -Wsign-conversion $r -fsyntax-only -x c -DHRM_IMPLEMENTATION hrm.h \
+               2> "$B/conversion.log"; then
+            conv_ok=$((conv_ok + 1))
+        else
+            echo "conversion: $cc $r"; head -20 "$B/conversion.log"
+        fi
+    done
+done
+if clang -std=c99 $WARN -Wduplicate-enum -fsyntax-only -x c -DHRM_IMPLEMENTATION hrm.h 2> "$B/conversion.log"; then
+    conv_ok=$((conv_ok + 1))
+else
+    echo "conversion: clang -Wduplicate-enum"; head -20 "$B/conversion.log"
+fi
+if [ "$conv_ok" -eq 5 ]; then
+    pass=$((pass + 1)); echo "conversion: -Wconversion -Wsign-conversion clean (gcc, clang; double, float), -Wduplicate-enum clean"
+else
+    fail=$((fail + 1))
+fi
+
 # The examples build with warnings as errors (make render and the per-ray
 # example run them; here they only have to compile).
 configs=$((configs + 1))
