@@ -669,15 +669,11 @@
    between the halves and ends the search after three halvings, a jump
    keeps all of it and is located to 4 ulps of t, made a breakpoint and
    reported in hrm_result.jumps. A slab or a bounding box is then
-   integrated at each piece's order by every method (measured on the
-   bench's slab scene: 1e-6 in 27 to 51 samples, as with its faces given;
-   before the scan, global Gauss-Kronrod's 17 samples all fell outside
-   the slab and returned 60% low with HRM_OK). A medium's edge, sigma_t
-   0 on one side, is located the same way even where sigma_t rises from 0
-   continuously (a kink: a cloud's iso-surface), so that every piece is
-   smooth (a blob 0.09 wide on a clipped ray: Gauss-Kronrod 17 samples
-   to 1e-12, nested Simpson 17-33 and Dormand-Prince 21-36 to 1e-5, from
-   80-156, 23-50 and 82-171, and a fifth of the medium calls); not where
+   integrated at each piece's order by every method (the bench's slab
+   scene: 1e-6 in 27 to 51 samples, as with its faces given). A medium's
+   edge, sigma_t 0 on one side, is located the same way even where
+   sigma_t rises from 0 continuously (a kink: a cloud's iso-surface), so
+   that every piece is smooth; not where
    it lies against the ray's end or a breakpoint, within a width whose
    sigma_t could hold 1/64 of tau_tol (a sphere of smoke that fades out
    at its surface, entered and left by the ray: a few calls at each end,
@@ -686,10 +682,7 @@
    the larger sample is given to the transmittance layer,
    whose panels must then reproduce it: a blob a few scan points wide is
    not lost between the nine samples of the layer's first panel (which
-   spans the whole ray where sigma_t is 0 at t0). Before, a ray clipped
-   to a cloud's bounds (t0 = 2.7, 1 long) crossing one blob 0.1 wide
-   returned Tr = 1 and L = 0 with HRM_OK (the truth: Tr = 0.69), and the
-   cloud of `make render` stalled at RMSE 1e-2 with the defaults. The
+   spans the whole ray where sigma_t is 0 at t0). The
    cost is 33 medium calls, about 50 more per jump, a few per steep
    smooth change; no source evaluation. It ends where the trapezoid rule
    on its own samples puts the thinnest channel's tau past
@@ -827,15 +820,12 @@
        the warp does with the source samples, and no effort goes where Tr
        is already 0. (The floor matters at a kink of sigma, the edge of a
        cloud's iso-surface: relative to its own increment alone a panel
-       there had to shrink to about tau_tol of the ray, and a cloud ray
-       crossing a dozen kinks took 5.7 million sigma evaluations at rtol
-       1e-5; with it, 912, L unchanged to 1e-8.) A rejected panel's largest and smallest samples are
+       there would shrink to about tau_tol of the ray.) A rejected panel's
+       largest and smallest samples are
        remembered, and a later panel over one must reproduce it: a thin
        feature once sampled is not lost when the panel that saw it is
        split; what the medium scan saw is kept so for every march, also
-       one begun again past the panel table (a bump at t = 15 behind 30
-       kinks of sigma: 17-43% off with a warning at rtol 1e-5 when a
-       march begun again from t0 forgot it; within 0.35 rtol now). A
+       one begun again past the panel table. A
        feature narrower than the spacing of the samples of a panel
        (the first spans 8 mean free paths of the densest channel at t0, or
        the whole ray if that is thinner: 9 samples) with nothing around it
@@ -1717,6 +1707,14 @@ static const hrm__method_info hrm__methods[HRM_METHOD_COUNT] = {
     HRM__METHOD_LIST(HRM__METHOD_INFO)
 #undef HRM__METHOD_INFO
 };
+
+/* Adaptive: nested Simpson, Gauss-Kronrod and the Runge-Kutta pairs (a
+   tolerance, an error estimate, a budget, remembered abscissae). */
+static int hrm__is_adaptive(hrm_method method)
+{
+    int fam = hrm__methods[method].family;
+    return fam == HRM__ADAPTIVE_QUAD || fam == HRM__PAIR;
+}
 
 /* ---------------------------------------------------------------------- */
 /* Shared machinery: the solve context, callbacks, random numbers         */
@@ -6039,7 +6037,7 @@ static hrm_status hrm__resolve(const hrm_options *in, hrm_options *o, int tau_in
        step count 1/100 of N^-order, below the rule's own error at every N
        on a unit-scale problem (its cost grows only like log(1/tau_tol)) */
     if (o->tau_tol == 0)
-        o->tau_tol = mi->family == HRM__ADAPTIVE_QUAD || mi->family == HRM__PAIR
+        o->tau_tol = hrm__is_adaptive(o->method)
                          ? o->rtol / 8
                          : HRM__R(0.01 * pow((double)o->steps, -(o->method == HRM_RECTANGLE && o->jitter
                                                                   ? 1 : mi->order)));
@@ -6128,12 +6126,11 @@ static hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, hrm__memo *memo, hrm_
     c->homog = (m->flags & HRM_MEDIUM_HOMOGENEOUS) != 0;
     c->per_length = (m->flags & HRM_EMISSION_PER_LENGTH) != 0;
     c->rte = o->form == HRM_FORM_RTE && mi->rte;
-    c->use_memo = mi->family == HRM__ADAPTIVE_QUAD || mi->family == HRM__PAIR;
+    c->use_memo = hrm__is_adaptive(o->method);
     c->memo = memo;
     /* Tolerances: below 100 epsilons round-off dominates any estimate. */
     c->rtol = o->rtol;
-    if (c->rtol < 100 * HRM__EPS &&
-        (mi->family == HRM__ADAPTIVE_QUAD || mi->family == HRM__PAIR)) {
+    if (c->rtol < 100 * HRM__EPS && hrm__is_adaptive(o->method)) {
         c->rtol = 100 * HRM__EPS;
         c->warning = HRM_WARN_RTOL_CLIPPED;
     }
@@ -6155,7 +6152,7 @@ static hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, hrm__memo *memo, hrm_
                      (o->method == HRM_GAUSS_KRONROD && o->gk_mode == HRM_GK_GLOBAL));
     /* the medium scan: adaptive methods by default, fixed-step ones when
        asked (find_jumps = 1; their cost is otherwise N's alone) */
-    c->scan = (o->find_jumps == 1 || (o->find_jumps == 0 && c->use_memo)) && !c->homog && !m->transmittance &&
+    c->scan = (o->find_jumps == 1 || (o->find_jumps == 0 && hrm__is_adaptive(o->method))) && !c->homog && !m->transmittance &&
               (m->sigma_a || m->sigma_s || m->sigma_t || m->sigma) && t_fine;
     c->gk = o->gk_rule == HRM_GK_K7 ? &hrm__k7 : &hrm__k15;
     c->rough_left = HRM__JUMP;
@@ -6174,7 +6171,7 @@ static hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, hrm__memo *memo, hrm_
     c->src = hrm__tau_source(m, o, c->use_le || c->use_li);
     c->decoupled = c->src == HRM__TAU_LAYER;
     c->closed = hrm__tau_closed(c->src);
-    c->mcheck = c->decoupled && c->use_memo;
+    c->mcheck = c->decoupled && hrm__is_adaptive(o->method);
     c->coupled = c->src == HRM__TAU_RULES;
     c->need_st = c->coupled || c->rte || c->src == HRM__TAU_STREAM;
     c->expo = c->closed ? o->exponential : 0;
@@ -6706,7 +6703,7 @@ static void hrm__dispatch(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM__NY]
 static hrm_status hrm__finish(hrm__ctx *c, const hrm_options *o, const hrm_real y[HRM__NY],
                               hrm_real L[HRM__CH], hrm_real Tr[HRM__CH], hrm_real err[HRM__CH])
 {
-    int fam = hrm__methods[o->method].family, adaptive = fam == HRM__ADAPTIVE_QUAD || fam == HRM__PAIR;
+    int adaptive = hrm__is_adaptive(o->method);
     int i;
     hrm_real absorbed[HRM__CH]; /* 1 - Tr, without cancellation where tau is known */
     memcpy(L, y + HRM__CH, sizeof(hrm_real) * HRM__CH);
@@ -6975,7 +6972,7 @@ typedef struct hrm__job {
 static unsigned hrm__needs(const hrm_medium *m, const hrm_options *o, const hrm_options *in, int tr_only,
                            hrm_real t1)
 {
-    int fam = hrm__methods[o->method].family, le, li;
+    int le, li;
     int estimator = tr_only && (!in || in->method == HRM_METHOD_DEFAULT);
     int sigma_cb = !(m->flags & HRM_MEDIUM_HOMOGENEOUS) && !m->transmittance;
     hrm__tau_src src;
@@ -6985,7 +6982,7 @@ static unsigned hrm__needs(const hrm_medium *m, const hrm_options *o, const hrm_
     if (!estimator && (src == HRM__TAU_LAYER ||
                        (sigma_cb && o->warp.kind == HRM_WARP_DISTANCE && !(tr_only && HRM__FINITE(t1)))))
         need |= HRM__NEED_LAYER;
-    if (fam == HRM__ADAPTIVE_QUAD || fam == HRM__PAIR) need |= HRM__NEED_MEMO;
+    if (hrm__is_adaptive(o->method)) need |= HRM__NEED_MEMO;
     if (o->exponential && hrm__tau_closed(src)) need |= HRM__NEED_EFIT;
     return need;
 }
@@ -7031,8 +7028,7 @@ static HRM__NOINLINE hrm_status hrm__solve_job(hrm__job *j)
     *j->stats = c.stats;
     if (st != HRM_OK) return st;
     if (j->t0 == t1) {
-        int fam = hrm__methods[o->method].family;
-        if (fam == HRM__ADAPTIVE_QUAD || fam == HRM__PAIR) hrm__fill(j->err, HRM__CH, 0);
+        if (hrm__is_adaptive(o->method)) hrm__fill(j->err, HRM__CH, 0);
         return st;
     }
     c.stats.t_cut = t1;
