@@ -74,56 +74,43 @@
    ==========================================================================
    DEFINITIONS
    ==========================================================================
-   t        distance along the ray from its origin. A call integrates from
-            t0 (the camera end) to t1 (a surface, or where the medium ends).
-   sigma_a  absorption coefficient (1/length), sigma_s scattering coefficient,
-   sigma_t  extinction sigma_a + sigma_s (unless given separately).
-   tau      optical depth from t0: tau(t) = integral of sigma_t from t0 to t.
-   Tr       transmittance exp(-tau). The result's Tr is Tr(t0, t1).
-   Le       emitted radiance. The source is sigma_a*Le (Munoz 2014 eq. 1,
-            pbrt-v4), or Le itself with HRM_EMISSION_PER_LENGTH (pbrt-v2,
-            Cycles, where emission is already a per-length source).
-   Li       in-scattered radiance toward the camera: phase function and the
-            light's own transmittance already applied. hrm never looks
-            inside it; the host computes it (shadow rays, photon map ...).
-   S        source S(t) = sigma_a*Le + sigma_s*Li.
-   L        radiance the medium adds: L = integral over [t0,t1] of Tr(t0,t)*S(t).
-            The host composes  L_total = L + Tr * L_surface.
-   sample / evaluation
-            one evaluation of the source (Le and/or Li) at one distance t.
-            This is the cost that matters (each Li is a shadow ray) and is
-            counted in hrm_stats.evals. A solver evaluates the callbacks at
-            most once per distinct abscissa.
-   medium evaluation
-            one evaluation of the medium's coefficients (sigma callbacks or
-            the transmittance callback) at one abscissa: hrm_stats.medium_evals.
-   step     one step of an IVP solver, one panel of Simpson's rule, one
-            sample of Monte Carlo, one segment of the rectangle rule.
+   t      distance along the ray from its origin; a call integrates from t0
+          (the camera end) to t1 (a surface, or where the medium ends).
+   sigma_a, sigma_s, sigma_t   absorption, scattering, extinction (1/length;
+          sigma_t = sigma_a + sigma_s unless given separately).
+   tau    optical depth from t0, the integral of sigma_t; Tr = exp(-tau), the
+          result's Tr is Tr(t0, t1).
+   Le     emitted radiance: the source is sigma_a Le (Munoz 2014 eq. 1,
+          pbrt-v4), or Le itself with HRM_EMISSION_PER_LENGTH (pbrt-v2,
+          Cycles).
+   Li     in-scattered radiance toward the camera, phase function and the
+          light's transmittance applied: the host's (shadow rays, ...).
+   S      the source sigma_a Le + sigma_s Li. L = integral over [t0, t1] of
+          Tr(t0, t) S(t), the radiance the medium adds; the host composes
+          L + Tr L_surface.
+   evaluation   one call of the source (Le and/or Li) at one abscissa, at
+          most once per abscissa: the cost that matters (each Li is a
+          shadow ray), hrm_stats.evals. A medium evaluation (sigma or
+          transmittance callbacks): hrm_stats.medium_evals.
 
    ==========================================================================
    THE SCENE: hrm_medium
    ==========================================================================
-   Every member is optional. A NULL callback is an absent term, and an absent
-   term is never called and costs nothing:
+   Every member is optional; an absent (NULL) term is never called:
      sigma_a, sigma_s  NULL: zero.     sigma_t  NULL: sigma_a + sigma_s.
-     sigma             both coefficients from one call (one density lookup
-                       where both follow a density: sigma_a = rho k_a,
-                       sigma_s = rho k_s); sigma_t is their sum. Given with
-                       any of the three above: HRM_ERR_BAD_MEDIUM.
-     Le                NULL: no emission (and never called where sigma_a = 0
-                       in every channel, unless HRM_EMISSION_PER_LENGTH).
-     Li                NULL: no scattering (and never called where sigma_s = 0
-                       in every channel).
-     transmittance     closed-form Tr(ta, tb) of the eye ray. NULL: hrm
-                       integrates sigma_t with the chosen method.
-   Homogeneous media: set flags |= HRM_MEDIUM_HOMOGENEOUS and fill
-   const_sigma_a / const_sigma_s. The sigma callbacks and the transmittance
-   callback are then ignored, Tr is exp(-sigma_t*(tb-ta)) in closed form and
-   no medium evaluation is ever made.
-   Callbacks must return finite values; coefficients and sources (Le, Li)
-   must also be >= 0, and a transmittance Tr(t0, t) must lie in [0, 1] and
-   not rise as t grows. Anything else stops the solve with
-   HRM_ERR_CALLBACK_VALUE: no callback is called after the bad value.
+     sigma             both coefficients from one call (one density
+                       lookup); with any of the three above:
+                       HRM_ERR_BAD_MEDIUM.
+     Le, Li            NULL: no emission, no scattering; never called where
+                       sigma_a (Le, unless per length) or sigma_s (Li) is 0
+                       in every channel.
+     transmittance     closed-form Tr(ta, tb) of the eye ray; NULL: hrm
+                       integrates sigma_t (TRANSMITTANCE).
+   flags |= HRM_MEDIUM_HOMOGENEOUS with const_sigma_a / const_sigma_s: the
+   callbacks above are ignored, Tr is exp(-sigma_t (tb - ta)), no medium
+   evaluation. Callbacks return finite values, coefficients and sources
+   >= 0, a transmittance in [0, 1] not rising with t; anything else stops
+   the solve with HRM_ERR_CALLBACK_VALUE (no call after the bad value).
 
    ==========================================================================
    CONFIGURATION (define before including)
@@ -132,32 +119,22 @@
    HRM_STATIC          make every function static (private to one file).
    HRM_REAL            scalar type, double by default; float works too.
    HRM_CHANNELS        colour channels, 3 by default; 1 to 64.
-   HRM_MAX_BREAKS      breakpoints per ray (options.breaks), 64; 1-1024.
-   HRM_MAX_JUMPS       jumps reported per ray (hrm_result.jumps), 8; 1-256.
-   HRM_MAX_LIGHTS      lights hrm_light_options weighs, 8; 1-64.
-   Storage of the implementation (no allocation in a solve: each is a
-   fixed array on the stack, held only by the solves that use it):
-   HRM_NS_INTERVALS    nested Simpson's worst-first intervals, 64; 8-4096.
-   HRM_NS_PANELS       its initial panels at most, 32; 1-HRM_NS_INTERVALS.
-   HRM_GK_INTERVALS    global Gauss-Kronrod's intervals, 128; 8-4096.
-   HRM_GK_INITIAL      its initial intervals at most, 32;
-                       1-HRM_GK_INTERVALS.
-   HRM_MAX_DEPTH       nested Simpson's and local Gauss-Kronrod's finish
-                       depth, 60; 8-200.
-   HRM_TAU_PANELS      panels the transmittance layer remembers, 128
-                       (older ones are marched again from a checkpoint);
-                       16-65536.
-   HRM_SHADOW_PANELS   the shadow-ray estimator's panels a segment, 48;
-                       8-4096.
-   A value outside its range fails to compile. Where storage runs out a
-   solve warns (HRM_WARN_STORAGE) or finishes left to right (TOLERANCES).
-   HRM_ASSERT(x)       internal invariants only (never user input);
-                       assert() by default.
+   HRM_MAX_BREAKS      breakpoints per ray, 64 (1-1024); HRM_MAX_JUMPS jumps
+                       reported, 8 (1-256); HRM_MAX_LIGHTS lights weighed
+                       by hrm_light_options, 8 (1-64).
+   Storage (fixed arrays, held only by the solves that use them; where
+   they run out a solve finishes left to right or warns HRM_WARN_STORAGE):
+   HRM_NS_INTERVALS 64 (8-4096), HRM_NS_PANELS 32 (1-HRM_NS_INTERVALS):
+                       nested Simpson's intervals and initial panels.
+   HRM_GK_INTERVALS 128 (8-4096), HRM_GK_INITIAL 32: global Gauss-Kronrod's.
+   HRM_MAX_DEPTH 60 (8-200): the left-to-right finish's depth.
+   HRM_TAU_PANELS 128 (16-65536): the transmittance layer's panel table.
+   HRM_SHADOW_PANELS 48 (8-4096): the shadow-ray estimator's a segment.
+   A value outside its range fails to compile (a static assertion).
+   HRM_ASSERT(x)       internal invariants only; assert() by default.
    HRM_SQRT, HRM_EXP, HRM_EXPM1, HRM_LOG, HRM_LOG1P, HRM_POW, HRM_FABS,
-   HRM_SIN, HRM_COS, HRM_ATAN2, HRM_HYPOT
-                       math functions; by default the libm function that
-                       matches sizeof(HRM_REAL) (expf for float, exp for
-                       double).
+   HRM_SIN, HRM_COS, HRM_ATAN2, HRM_HYPOT: math functions; by default the
+                       libm function of HRM_REAL's type (expf, exp).
 
    ==========================================================================
    ERRORS
@@ -167,17 +144,12 @@
    far) or a positive warning (a usable estimate that missed what was asked;
    the result holds it). hrm_status_string() names each. Bad input never
    aborts, never crashes and never writes anything but the result.
-   Range: with R = the largest HRM_REAL / 1024 / max(1, t1 - t0) (an
-   infinite ray counts as 1), every sigma coefficient, every source sigma_a
-   Le + sigma_s Li, and each of them times a warp's dt/du stays within R at
-   every sample; t1 - t0 is finite for finite ends. Within it no sum of any
-   rule overflows (a factor 1024 to spare); beyond it the call returns
-   HRM_ERR_RANGE (a constant coefficient: before any evaluation; a
-   callback's: at that sample) rather than inf or NaN. In double R is
-   1.7e305 on a unit ray, in float 3.3e35. The RTE form's explicit steps
-   past their stability limit grow without bound: a solution beyond the
-   largest HRM_REAL / 1024 (what sources within R integrate to at most)
-   ends the solve with HRM_ERR_RANGE too (see ACCURACY AND COST, RTE form).
+   Range: R = the largest HRM_REAL / 1024 / max(1, t1 - t0) (1.7e305 in
+   double on a unit ray, 3.3e35 in float). Every coefficient and source,
+   also times a warp's dt/du, within R keeps every sum of every rule finite;
+   beyond it, or where t1 - t0 or the RTE form's solution overflows it, the
+   call returns HRM_ERR_RANGE (constants: before any evaluation;
+   callbacks: at that sample) rather than inf or NaN.
 
    ==========================================================================
    BAD INPUT
@@ -286,600 +258,212 @@
                                    "unknown status", "?"
 
    ==========================================================================
-   THREAD SAFETY
+   THREAD SAFETY AND MEMORY
    ==========================================================================
    hrm holds no global or static mutable state and never allocates. Calls
    are thread-safe and re-entrant: an Li callback may call hrm_transmittance
    (or hrm_solve) for its shadow ray. Randomness (Monte Carlo, jitter) comes
    from options.seed alone: the same inputs give the same answer.
+   Stack (tests/stack.c; the worst over every variant, double, 3 channels,
+   gcc and clang -O2; a solve holds only the storage it uses): fixed-step
+   methods 7-11 KiB on constants, 34 at most (the transmittance layer, 18);
+   the pairs 14 and 40; Gauss-Kronrod 92, nested Simpson 122 (their
+   intervals); the shadow-ray estimator 8. About 2.2 times that with 8
+   channels, half in float, at most (48 + 48 HRM_CHANNELS) KiB in double;
+   twice with a shadow ray solved inside Li.
+
+   ==========================================================================
+   ARCHITECTURE
+   ==========================================================================
+   hrm_solve -> hrm__run: options resolved (hrm__resolve), the storage
+   the configuration needs (hrm__needs) held in frames of its own, then
+   hrm__solve_job: hrm__setup (input checks; where tau comes from,
+   hrm__tau_source; the warp), hrm__scan_medium (jumps of sigma made
+   breakpoints), hrm__dispatch (the pieces between breakpoints, each by
+   the driver of the method's family in the method table: fixed-step,
+   worst-first quadrature, local Gauss-Kronrod, Runge-Kutta pairs; solved
+   again where a jump or a missed medium sample was found), hrm__finish
+   (Tr, the bound on L, the status). Every abscissa goes through
+   hrm__eval: the warp's map, the memo, the medium and Tr there, then Le
+   and Li, the source times dt/du.
 
    ==========================================================================
    ACCURACY AND COST   (N = options.steps; evaluations = source samples)
    ==========================================================================
-   method               order  evaluations         notes
-   HRM_RECTANGLE        2      N                   midpoint of each segment;
-                        (1)                        with jitter, one random
-                                                   offset per ray: order 1,
-                                                   unbiased over seeds when
-                                                   Tr has a closed form (tau
-                                                   from the samples adds an
-                                                   O(N^-2) bias)
-   HRM_SIMPSON          4      2N + 1              N panels
-   HRM_MONTE_CARLO      N^-1/2 N                   stratified: one sample per
-                        (N^-3/2 stratified, smooth) segment
+   method               order  evaluations     notes
+   HRM_RECTANGLE        2 (1)  N               midpoints; jitter: one offset
+                                               a ray, order 1 (unbiased
+                                               with a closed-form Tr)
+   HRM_SIMPSON          4      2N + 1          N panels
+   HRM_MONTE_CARLO      N^-1/2 N               stratified: N^-3/2 (smooth)
    HRM_EULER            1      N
-   HRM_RK4              4      2N + 1              2 new per step (c = 1/2
-                                                   shared by two stages)
-   HRM_ADAMS_BASHFORTH  4      N + 3 (N >= 4)      4-step, started with 3 RK4
-                                                   steps; 1 new per step
-   HRM_ANALYTIC_MARCH   2      N                   what renderers ship
-                        (1)                        (Hillaire 2015): one
-                                                   sample per step, at its
-                                                   midpoint (jitter: one
-                                                   random offset per ray),
-                                                   the extinction integrated
-                                                   exactly in t, sigma_t
-                                                   taken at the sample (tau
-                                                   coupled, its default).
-                                                   Without a warp, and under
-                                                   the distance or a user
-                                                   warp: the source constant
-                                                   over each step in t;
-                                                   exact for a constant
-                                                   S / sigma_t at any N,
-                                                   0 <= L <= sup(S/sigma_t)
-                                                   (1 - Tr) however thick.
-                                                   Under the equiangular
-                                                   warp: S dt/du constant
-                                                   over each step in u (the
-                                                   production equiangular
-                                                   march, Kulla and Fajardo
-                                                   2012), second order once
-                                                   the steps resolve the
-                                                   light; see IMPORTANCE
-                                                   SAMPLING
-   Adaptive (rtol, atol, h_min, h_max, max_evals; see TOLERANCES):
-   HRM_NESTED_SIMPSON   6      2 per interval      Simpson on the halves vs
-                                                   on the whole (Lyness), the
-                                                   Richardson-corrected halves
-                                                   returned; worst interval
-                                                   first while 64 intervals
-                                                   fit, then left to right;
-                                                   4*steps+1 to start (2
-                                                   panels by default, <= 32)
-   HRM_GAUSS_KRONROD    22     15 per interval     gk_rule K15 (G7/K15, the
-                        (K15)  + 2                 default) or K7 (G3/K7:
-                        12     7 per interval      fewer samples across jumps
-                        (K7)   + 2                 and thick layers, more on
-                                                   smooth warped integrands
-                                                   and at tight rtol, see
-                                                   bench/); the ray's two ends
-                                                   once (a layer at the
-                                                   camera or surface is seen);
-                                                   gk_mode GLOBAL (worst
-                                                   interval first while 128
-                                                   fit, then left to right;
-                                                   <= 32 to start) or LOCAL
-                                                   (Munoz: recursive split,
-                                                   samples of a split
-                                                   interval discarded)
-   HRM_BOGACKI_SHAMPINE 3(2)   3 per step          first same as last
-   HRM_DORMAND_PRINCE   5(4)   5 per step          first same as last
-   HRM_FEHLBERG         4(5)   5 per step          4th order propagated
-   HRM_CASH_KARP        4(5)   5 per step          4th order propagated
-   HRM_VERNER           6(5)   6 per step          DVERK's pair
-   Runge-Kutta pairs: "per step" counts attempted steps, accepted or
-   rejected, plus 1 for the first sample. Stages that share a node share one
-   evaluation, and the sample at a step's end starts the next step.
-   Orders are for smooth integrands; a discontinuity (a sharp shadow) drags
-   every fixed-step method down to first order; the adaptive methods place
-   small steps around it.
-   Transmittance (see TRANSMITTANCE below) is integrated in t apart from
-   the source samples by default; a closed form, where given, is exact.
-
-   Two forms for the IVP solvers (options.form):
-   HRM_FORM_OPTICAL_DEPTH (default) state (tau, A), dtau/dt = sigma_t,
-       dA/dt = exp(-tau)*S. Nothing feeds back, so it is stable at any step:
-       L >= 0 and 0 <= Tr <= 1 however thick the medium (in Adams-Bashforth a
-       positivity limiter keeps each increment's sign when every history
-       value agrees on it; it is inactive on resolved problems).
-   HRM_FORM_RTE  dL/dt = S - sigma_t*L (Munoz 2014 eq. 1) with Tr alongside
-       (reported unless the medium has a closed form, which is reported
-       instead), marched from t1 to t0 in the direction light travels. Explicit
-       methods blow up once h*sigma_t passes their stability limit (2 for
-       Euler, about 2.79 for RK4, 0.3 for Adams-Bashforth 4): kept so that
-       the stiffness the papers report can be reproduced and measured. The
-       result then grows with (h sigma_t)^N, finite but meaningless, until
-       it passes the range (ERRORS): HRM_ERR_RANGE, L = 0, Tr = 1. The
-       Runge-Kutta pairs keep h sigma_t within their limit by rejecting
-       steps; a budget that runs out forces the rest unchecked
-       (HRM_WARN_MAX_EVALS), and those steps can blow up alike.
-   Neither form is accurate when one step spans many mean free paths; the
-   optical-depth form only stays bounded there.
+   HRM_RK4              4      2N + 1
+   HRM_ADAMS_BASHFORTH  4      N + 3           4-step, RK4 start (N >= 4)
+   HRM_ANALYTIC_MARCH   2 (1)  N               Hillaire 2015: extinction
+                                               exact over each step in t,
+                                               S/sigma_t held (under the
+                                               equiangular warp S dt/du);
+                                               0 <= L <= sup(S/sigma_t)(1-Tr)
+   HRM_NESTED_SIMPSON   6      4 a split       Lyness: Simpson on halves vs
+                                               whole, Richardson-corrected;
+                                               worst first (the default)
+   HRM_GAUSS_KRONROD    22/12  15 or 7 an      K15 (G7/K15) or K7 (G3/K7);
+                               interval + 2    gk_mode GLOBAL (worst first)
+                                               or LOCAL (Munoz's recursion)
+   HRM_BOGACKI_SHAMPINE 3(2)   3 a step        first same as last
+   HRM_DORMAND_PRINCE   5(4)   5 a step        first same as last
+   HRM_FEHLBERG         4(5)   5 a step        4th order propagated
+   HRM_CASH_KARP        4(5)   5 a step        4th order propagated
+   HRM_VERNER           6(5)   6 a step        DVERK's pair
+   Orders hold on smooth integrands; a jump (a sharp shadow) drags every
+   fixed-step method to first order (BREAKPOINTS).
+   Forms of the IVP solvers (options.form): HRM_FORM_OPTICAL_DEPTH (the
+   default), state (tau, A) with dA/dt = exp(-tau) S: nothing feeds back,
+   L >= 0 and 0 <= Tr <= 1 at any step. HRM_FORM_RTE, dL/dt = S - sigma_t L
+   (Munoz eq. 1) marched from t1 to t0: explicit steps blow up past h
+   sigma_t = 2 (Euler), 2.79 (RK4), 0.3 (Adams-Bashforth), kept to
+   reproduce the papers' stiffness; beyond the range: HRM_ERR_RANGE.
 
    ==========================================================================
    TOLERANCES (adaptive methods)
    ==========================================================================
-   rtol (default 1e-3) and atol (default 0) bound the GLOBAL error of L, per
-   channel:  |L - L_exact| <~ rtol*|L| + atol.
-   - Nested Simpson and global Gauss-Kronrod refine worst first: the
-     interval with the largest error estimate is split until the estimates
-     add up to at most max(atol, rtol*|L|), |L| the current total, so the
-     tolerance follows the best estimate of the answer and an interval
-     accepted early is refined again when the total proves smaller. Past
-     their storage (64 and 128 intervals) each interval is finished left to
-     right against its share, as below, at the scale of the total found.
-   - The Runge-Kutta pairs (and Munoz's local Gauss-Kronrod) judge each
-     step or interval as it comes: it gets the share
-     atol*f + rtol*max(|dL|, f*|L|) of the tolerance, f being its fraction
-     of the integration range and dL its own increment; summed over the
-     steps that is <= atol + 2*rtol*|L|. |L| is the larger of the running
-     sum and half of a coarse estimate of the total taken from the first
-     samples (no extra evaluation), so an integral that starts at zero is
-     not asked for a relative accuracy on nothing; where the first
-     samples saw no source (a blob further on), the pairs take it from
-     the first step that does, its increment extrapolated over the ray. In the optical-depth
-     form the local errors add without amplification, which is what makes a
-     sum of local shares a global bound.
-   - tau (coupled mode) is controlled the same way, its error weighted by
-     the transmittance where it occurs (an error in tau matters through
-     exp(-tau) only), and no effort goes into tau where Tr is already 0. A
-     closed-form Tr is exact; decoupled tau has its own tau_tol.
-   - A step or interval whose error does not shrink with it (a jump such as
-     a shadow edge, or noise) may take rtol/16 of |L|, at most 16 times per
-     call, instead of descending to h_min (left-to-right drivers; worst
-     first, a jump's interval is split while it holds the largest error).
-   The estimates are of the result returned, not of a lower-order rule:
-   - nested Simpson returns the Richardson-corrected halves; its estimate is
-     |S2 - S1| until a split shows S2 - S1 falling like h^5, then at most a
-     fifth of it, scaled by how far the parent's corrected value missed its
-     halves' sum;
-   - Gauss-Kronrod returns K; its estimate is |K - G| until a split shows it
-     falling, then scaled by how far the parent's K missed its halves' sum
-     (|K - G| alone is G's error, far above K's);
-   - Bogacki-Shampine, Dormand-Prince and Verner return their higher order:
-     the embedded estimate e becomes 4 e (e/M)^(1/(k+1)), M the step's size;
-     Fehlberg and Cash-Karp return the order their estimate is of.
-   Measured on bench/'s smooth scenes, rtol 1e-2..1e-10, both ways of
-   giving the medium, with and without a warp: the worst run returned with
-   HRM_OK is at most 2.3 rtol for every default, the median 0.01-0.18 rtol
-   (Gauss-Kronrod 3e-8..2.5e-4: its first 15 nodes are already that
-   accurate on a smooth ray; nested Simpson 0.0034 with sigma callbacks
-   under a warp, where the medium check below asks for more) (bench/results/summary.md, "Tolerance
-   proportionality"). The Runge-Kutta
-   pairs under the default controller also read the stage values as
-   samples of L' at the step's distinct nodes: the top term of their Newton
-   interpolation series, integrated over the step, is a second estimate,
-   and the larger of the two counts (a step over a light's peak can fool
-   both embedded solutions alike; the stage values show it), rough steps
-   included: at a jump the series' top term falls like h, as the pair's
-   estimate does. With decoupled tau (sigma
-   through callbacks, no closed form) every adaptive method also checks its
-   nodes against the transmittance layer: the interval's own weights
-   applied to sigma_t Tr at its nodes must give the layer's 1 - Tr across
-   it (the exponential variants: applied to sigma_t, the layer's increment
-   of tau). Where they miss, the nodes alias the medium (sigma_t = 0 at
-   every node of an interval where the medium is not, say) and however
-   well the rule's two estimates agree, the interval's estimate is at
-   least the miss times its mean source, or its largest sampled source
-   where the miss is over half. (On sigma = k max(0, sin f t), k 0.3 and
-   3, f 1, 3 and 10, no breakpoints, the seven adaptive defaults under
-   the three warps at rtol 1e-2..1e-5: 48 of 378 solves returned HRM_OK
-   beyond 3 rtol without the check, nested Simpson up to 1e5 rtol (L = 0,
-   every node where sigma = 0), none with it, for 46% more Li evaluations,
-   most on those cases.) Munoz's and
+   rtol (1e-3) and atol (0) bound the global error of L per channel:
+   |L - L_exact| <~ rtol |L| + atol (tau's share: tau_tol, TRANSMITTANCE).
+   Nested Simpson and global Gauss-Kronrod split the interval of largest
+   estimate until the estimates add up to the tolerance of the current
+   total (past their storage: the rest left to right); the pairs and local
+   Gauss-Kronrod give a step atol f + rtol max(|dL|, f |L|), f its share.
+   Each estimate is of the value returned (nested Simpson's |S2 - S1|,
+   Gauss-Kronrod's |K - G|, each scaled once splits show its rate; the
+   pairs' embedded estimate and their stage values' Newton series, the
+   larger), raised where the nodes miss the layer's 1 - Tr (decoupled tau:
+   nodes that alias the medium). An interval whose error does not shrink
+   (a jump, noise) may take rtol/16 of |L|, 16 times a call.
+   bench/results/summary.md ("Tolerance proportionality"): the worst
+   HRM_OK run on the smooth scenes is within 2.3 rtol, every default.
+   Missed tolerances return the best estimate and a warning: H_MIN (a step
+   at h_min failed), MAX_EVALS (stats.evals never exceeds max_evals),
+   STORAGE (a finish HRM_MAX_DEPTH deep), ROUNDOFF (bisection no longer
+   helps, or t cannot resolve a step), TOLERANCE (the accepted estimates
+   exceed atol + 3 rtol |L|, also after one more pass at the scale found),
+   RTOL_CLIPPED (rtol below 100 epsilons, raised to it).
+   result.error: the sum of the accepted estimates per channel, whatever
+   the status (-1 for fixed-step methods). L lies in [0, the largest Le or
+   Li sampled times 1 - Tr]; what that cuts counts in result.error.
+   Not seen by any method: a feature between the samples of an accepted
+   step (give a light its warp, an occluder its breakpoints). Munoz's and
    Gonterman's controllers (options.control) keep their papers' own
-   definitions: eq. 12 relative to |L| per step (whose step rule shrinks the
-   step whenever rtol < 0.01: give h_min), and eq. 3.4 error per unit step.
-   rtol below 100 machine epsilons is raised to it (HRM_WARN_RTOL_CLIPPED).
-   When the tolerance cannot be met the call returns a warning and its best
-   estimate: HRM_WARN_H_MIN (a step at h_min still failed: taken anyway),
-   HRM_WARN_MAX_EVALS (Runge-Kutta: the last evaluations of the budget are
-   spread evenly over what is left of the ray, unchecked; quadrature: the
-   pending intervals are taken as they are; stats.evals never exceeds
-   max_evals; nested Simpson and global Gauss-Kronrod spend them on the
-   intervals with the largest estimates, so what they return is the best
-   their samples give), HRM_WARN_STORAGE
-   (a left-to-right finish 60 bisections deep), HRM_WARN_ROUNDOFF
-   (nested Simpson and global Gauss-Kronrod: bisection no longer reduces
-   the error; any
-   adaptive method on a ray farther from the origin than it is long, where
-   t itself resolves only eps |t0| and a step passed on that floor alone),
-   HRM_WARN_TOLERANCE (see VERIFIED below).
-   Verified: the tolerance's shares are judged against a scale, half of a
-   first estimate of the total (the first step or the initial panels). A
-   first sample on a light's peak can make that estimate many times too
-   large, and the shares too loose. So at the end the estimates of what
-   was accepted are added up: where they exceed atol + 3 rtol |L| and
-   the scale proved larger than |L|, the method is run once more at the
-   scale found (its evaluations count twice), and if they still exceed it
-   the call returns HRM_WARN_TOLERANCE; where the scale was not the cause
-   (steps accepted at t's resolution, rough steps past their share), it
-   returns HRM_WARN_TOLERANCE at once. Likewise where the physical bound
-   below cuts L by more than the tolerance, or a warp put distinct nodes
-   on one abscissa (HRM_WARN_ROUNDOFF: t cannot resolve the warp). (Not for Munoz's and Gonterman's
-   controllers, nor the RTE form, whose local errors do not add up.)
-   result.error: the sum of the estimates of what an adaptive method
-   accepted, per channel, whatever the status: with a warning, how far the
-   answer is believed to miss (-1 for the fixed-step methods: no
-   estimate). Bounded: an adaptive method's L always lies in [0, the
-   largest Le or Li sampled times 1 - Tr] (S / sigma_t is a weighted mean
-   of Le and Li), however a budget cut it short; what is cut off is added
-   to result.error (not with HRM_EMISSION_PER_LENGTH, whose S / sigma_t
-   has no such bound).
-   No abscissa is evaluated twice: a Runge-Kutta retry after a rejection,
-   and nodes closer than the resolution of t (far from the origin), reuse
-   the callbacks' values of the last 32 abscissae and of the ray's end.
-   What can still be missed: a feature (a light's peak, a thin layer, a
-   shadow) that falls between the samples of a step the method accepted
-   never shows in any sample: narrower than the spacing of the first
-   samples, or than the steps grown over a smooth stretch before it (a
-   pair's steps grow up to 5x each: at rtol 1e-14 Bogacki-Shampine strode
-   over a shadow a quarter of the ray wide). Give a point light the
-   equiangular warp and an occluder's edges as breakpoints.
-   Stack use, measured (tests/stack.c: every method over its forms, warps,
-   fits, Gauss-Kronrod modes and rules, breakpoints and media, on a painted
-   thread stack), double, 3 channels, gcc and clang -O2 alike (within 3%):
-   each solve holds only the storage its configuration uses. On
-   constants: 7-11 KiB for the fixed-step
-   methods, 14 KiB for the Runge-Kutta pairs. The transmittance layer
-   (sigma callbacks with decoupled tau, or the distance warp's reach) adds
-   18 KiB, mostly its table of HRM_TAU_PANELS panels; the adaptive methods'
-   memo 3 KiB, a fit's tables 4 KiB. The largest over the variants: 27 KiB
-   for the rectangle rule, Monte Carlo and the analytic march, 30-34 KiB
-   for Euler, RK4, Adams-Bashforth and Simpson, 40 KiB for the pairs, 92
-   KiB for Gauss-Kronrod (its HRM_GK_INTERVALS intervals, 49 KiB) and 122
-   KiB for nested Simpson (its HRM_NS_INTERVALS intervals and pool, 62
-   KiB, with its finish's HRM_MAX_DEPTH stack, 27 KiB, below them);
-   hrm_transmittance's shadow-ray estimator 8 KiB. About 2.2 times that
-   with 8 channels, half in float; at most (48 + 48 HRM_CHANNELS) KiB in
-   double, half in float. A shadow ray solved inside Li (hrm_solve or
-   hrm_transmittance) nests a second solve: up to twice that. No heap.
+   definitions (eq. 12, eq. 3.4), unverified.
 
    ==========================================================================
    IMPORTANCE SAMPLING (options.warp; Munoz 2014 s.5)
    ==========================================================================
-   A warp t = t(u) is a change of variable: every method integrates over u,
-   so fixed-step methods and Monte Carlo place their samples uniformly in u
-   (Monte Carlo's pdf is then du/dt) and adaptive methods start from it.
-   h_min, h_max and h0 are in units of u under a warp.
-   HRM_WARP_DISTANCE     u = 1 - exp(-sigma_ref (t - t0)) (Munoz eq. 13,
-                         reflected so that u grows with t). u resolves t
-                         only while 1 - u >> epsilon, i.e. for ln(2/eps)
-                         mean free paths of sigma_ref (36.7 in double, 16.6
-                         in float), so sigma_ref is never larger than the
-                         ray's own optical depth allows: no part of a
-                         finite ray is left unsampled unless the thinnest
-                         channel's Tr from t0 has fallen below eps/2 there
-                         (it then adds less than eps/2 of the largest
-                         S/sigma_t beyond). sigma_ref = 0: the thinnest
-                         channel's mean extinction over the ray up to that
-                         point (Munoz takes sigma_t at t0; the mean follows
-                         the medium that matters). Finding that point costs
-                         medium evaluations: none for a homogeneous medium,
-                         about 20-40 calls of a transmittance callback, or a
-                         coarse march of the transmittance layer (tau_tol
-                         1e-3) over sigma callbacks. sigma_ref zero or
-                         denormal after that: no warp. Exact for any N in a
-                         grey homogeneous medium under constant Li.
-   HRM_WARP_EQUIANGULAR  u = atan((t - delta)/D) for a point light D from the
-                         ray, projecting at delta (Munoz eq. 16, Kulla and
-                         Fajardo 2012); hrm_equiangular_warp computes delta
-                         and D. D = 0 with delta in [t0, t1]: the integral
-                         diverges, HRM_ERR_SINGULAR (also when D is below
-                         4 epsilons of |delta|, where no abscissa t can
-                         resolve the light's distance); D = 0 outside it, or an
-                         angular range below sqrt(epsilon) of the angles (a
-                         short segment far from the light): no warp.
+   A warp t = t(u) is a change of variable: every method integrates over u
+   (fixed-step nodes uniform in u; h_min, h_max, h0 in u).
+   HRM_WARP_DISTANCE     u = 1 - exp(-sigma_ref (t - t0)) (Munoz eq. 13);
+                         sigma_ref 0: the thinnest channel's mean
+                         extinction (lowered to what u resolves).
+   HRM_WARP_EQUIANGULAR  u = atan((t - delta)/D), a point light D from the
+                         ray at its foot delta (Munoz eq. 16; Kulla and
+                         Fajardo 2012): hrm_equiangular_warp. D = 0 with
+                         delta in [t0, t1]: HRM_ERR_SINGULAR; D = 0 outside
+                         it, or a range in u below sqrt(eps): no warp.
    HRM_WARP_USER         the host's t_of_u, dt_du (>= 0) and u_of_t.
-   Infinite rays: t1 = +INFINITY is valid under a warp that maps it to a
-   finite u (distance with sigma_ref > 0, equiangular with D > 0, a user
-   warp whose u_of_t(inf) is finite), else HRM_ERR_BAD_INTERVAL. The far end
-   is pulled in by one rounding step of u, so no callback ever sees infinity
-   (the part dropped has measure of order epsilon in u); a closed-form
-   transmittance callback is asked for Tr(t0, t) at that last abscissa.
-   In the RTE form, warps make the equation stiff (Munoz s.6); the
-   optical-depth form is not affected.
-   The analytic march under a warp: N steps equal in u, each step's
-   extinction integrated in t. Under the distance and user warps the
-   source is held constant over a step in t, as without a warp (exact for
-   a constant S / sigma_t at any N, 0 <= L <= sup(S / sigma_t) (1 - Tr)).
-   Under the equiangular warp S dt/du is held constant over a step in u,
-   as that warp's sampling weighs its light (Kulla and Fajardo 2012, the
-   production equiangular march): exact where S dt/du is constant and the
-   medium thin, second order once the steps resolve the light (N well
-   above pi r / D, r the ray's reach from the light's foot), first order
-   below; a source the warp does not follow (emission, a constant source)
-   is sampled as the rules in u sample it. The bound on L holds without
-   jitter; a jittered sample can exceed it, as a stratified estimator's.
+   t1 = +INFINITY: valid where the warp maps it to a finite u (no callback
+   sees infinity). The RTE form turns stiff under a warp (Munoz s.6).
+   Lights: hrm_light_options turns the host's point, spot and directional
+   lights and sphere occluders into one ray's warp and breakpoints (an
+   hrm_ray_plan the caller owns, one solve at a time): the equiangular
+   warp for the one light that reaches the ray; for several a mixture
+   warp, density sum power / r(t)^2 over the HRM_MAX_LIGHTS of most weight
+   (power / D times the angle the ray subtends); breakpoints at a spot's
+   cone and falloff edges and at every sphere's shadow (hrm_sphere_breaks).
 
    ==========================================================================
-   BREAKPOINTS (options.breaks, options.nbreaks)
+   BREAKPOINTS (options.breaks, options.nbreaks; options.find_jumps)
    ==========================================================================
-   A sharp shadow's edges or a medium's boundary make the integrand jump,
-   and every fixed-step rule falls to first order across a jump (Munoz
-   2014). Where the host knows them, give them: a strictly increasing list
-   of at most HRM_MAX_BREAKS abscissae in [t0, t1] (anything else is
-   HRM_ERR_BAD_BREAKS with L = 0, Tr = 1 and no evaluation). The ray is cut
-   there into pieces, each solved by the method on its own:
-   - fixed-step methods share N among the pieces in proportion to their
-     length in the integration variable (u under a warp), at least one
-     step each, by largest remainders (so N pieces or more cost one step
-     each); Simpson and RK4 sample both ends of every piece, so each
-     breakpoint adds one sample; Adams-Bashforth restarts with RK4 on each
-     piece; Monte Carlo draws its samples within each piece (stratified
-     over them);
-   - adaptive methods solve each piece to rtol, which bounds the sum;
-   - a sample at a breakpoint is taken 64 ulps inside the piece that owns
-     it, so each side of a jump is sampled on its own side (a breakpoint up
-     to about 60 ulps off the true edge still works: a renderer's shadow
-     test and its breakpoint, computed by two formulas, differed by 18
-     ulps, and with 8 ulps nested Simpson refined that sliver down to
-     h_min and warned HRM_WARN_H_MIN);
-   - the transmittance layer's panels end at breakpoints and sample sigma_t
-     on each side, so a medium whose coefficients jump there keeps its
-     order; tau stays continuous across them.
-   - a budget (max_evals) keeps for every piece what it needs to start:
-     below (nbreaks + 1) times a method's least cost it is
-     HRM_ERR_BAD_OPTION.
-   Measured (tests/test_breaks.c): across a shadow, Simpson and RK4 regain
-   order 4.0 (3.8 under an equiangular warp), the midpoint rule 2.0;
-   Gauss-Kronrod reaches round-off in 51 samples where it needed 917 for
-   1e-6 without the breakpoints. hrm_sphere_breaks gives the breakpoints
-   of a spherical occluder in front of a point light.
-   LIGHTS (hrm_light_options): the host lists its point, spot and
-   directional lights (position, direction, power, a spot's cone and
-   falloff half-angles) and sphere occluders; one call per ray sets
-   options.warp and options.breaks into a caller-owned hrm_ray_plan:
-   equiangular for the one point or spot light that reaches the ray, for
-   several a mixture warp whose density in t is their unshadowed
-   irradiance sum power / r(t)^2 (the HRM_MAX_LIGHTS of most weight, power
-   / D times the angle the ray subtends), t from u by safeguarded Newton;
-   a light's peak is flattened by the warp (a light left out of it has its
-   foot on the ray as a breakpoint: a node at its peak); breakpoints at
-   a spot's cone and falloff edges, and every sphere's shadow (a cone from
-   a point or spot light, the cylinder behind it for a directional one),
-   merged with the host's. A plan serves one solve at a time (the mixture
-   warp keeps its last inversion in it). Four point lights beside a ray
-   (tests/test_breaks.c): Simpson N = 32 12 times nearer the reference
-   with the plan than without; every adaptive method HRM_OK within 0.2
-   rtol under the mixture warp.
-   Jumps found automatically (options.find_jumps, nested Simpson and
-   global Gauss-Kronrod, no breakpoint needed): an interval that keeps 30%
-   of its parent's estimate three splits in a row does not shrink like a
-   smooth integrand. Where refining it on would cost more than 64
-   evaluations (its estimate over the tolerance, halved per split), it is
-   bisected on the source to 4 ulps of t (about 50 evaluations); where
-   the two sides then differ by at least 1% the solve stops and runs
-   again with that point as a breakpoint. A smooth integrand splits its
-   change between the halves: three halvings in a row that keep less
-   than 3/4 of it end the bisection, and the solve goes on without
-   searching again (a narrow light peak, a dense front under the
-   equiangular warp: the search costs its bisection, not a second
-   solve). The located points are returned in hrm_result.jumps (give
-   them as the next pixel's breakpoints); the evaluations of every pass
-   count, and some of the first pass's are repeated by the next.
-   The medium is scanned too (find_jumps 0 in every adaptive method, 1 in
-   the fixed-step ones; sigma from callbacks; on any ray that t resolves to
-   4096 ulps, a ray clipped to a medium's bounds far from the origin
-   included): before the method runs, sigma_t is sampled at 33 evenly
-   spaced abscissae, or at the spacing hrm_medium.feature gives where that
-   is closer (4097 at most), and on both sides of each breakpoint. Where neighbours differ by a factor 2 or more, the
-   interval is bisected on sigma_t; a steep but smooth change splits
-   between the halves and ends the search after three halvings, a jump
-   keeps all of it and is located to 4 ulps of t, made a breakpoint and
-   reported in hrm_result.jumps. A slab or a bounding box is then
-   integrated at each piece's order by every method (the bench's slab
-   scene: 1e-6 in 27 to 51 samples, as with its faces given). A medium's
-   edge, sigma_t 0 on one side, is located the same way even where
-   sigma_t rises from 0 continuously (a kink: a cloud's iso-surface), so
-   that every piece is smooth; not where
-   it lies against the ray's end or a breakpoint, within a width whose
-   sigma_t could hold 1/64 of tau_tol (a sphere of smoke that fades out
-   at its surface, entered and left by the ray: a few calls at each end,
-   and no sliver of a piece at t0 to warn on). Where
-   neighbours differ and no jump is found (a steep smooth change),
-   the larger sample is given to the transmittance layer,
-   whose panels must then reproduce it: a blob a few scan points wide is
-   not lost between the nine samples of the layer's first panel (which
-   spans the whole ray where sigma_t is 0 at t0). The
-   cost is 33 medium calls, about 50 more per jump, a few per steep
-   smooth change; no source evaluation. It ends where the trapezoid rule
-   on its own samples puts the thinnest channel's tau past
-   2 ln(64 / rtol): behind that no jump moves L by a share of rtol (a
-   cloud's core: a quarter of a camera ray's lookups). The transmittance layer, too, checks the source
-   nodes' sigma_a and sigma_s against what its panel sampled: a node above
-   twice that means the panel stepped over a dense slab, and the solve is
-   repeated with the layer sampling there. What none of this sees is a
-   feature narrower than the scan's spacing (1/32 of the ray by default)
-   that falls between two scan points and between every sample of the
-   first pass (a wisp 2% of a clipped ray: 19 of 21 solves returned L = 0
-   with HRM_OK): give the medium's feature (hrm_medium.feature: a voxel,
-   a noise's finest period), or its faces as breakpoints.
+   Abscissae in [t0, t1], strictly increasing, at most HRM_MAX_BREAKS,
+   where the integrand may jump (a shadow's edges, a medium's boundary):
+   each piece is solved on its own (fixed-step methods share N by length
+   in u, one step a piece at least; Simpson and RK4 take one more sample a
+   breakpoint), sampled 64 ulps inside its ends (an edge 60 ulps off still
+   works), the layer's panels ending there. A budget below (nbreaks + 1)
+   times a method's least cost: HRM_ERR_BAD_OPTION.
+   Found jumps (find_jumps 0, the default): nested Simpson and global
+   Gauss-Kronrod bisect on the source an interval that keeps 30% of its
+   parent's estimate three splits in a row, where refining on would cost
+   more than 64 evaluations; a jump of at least 1% is located to 4 ulps
+   of t, made a breakpoint and the solve run again (three halvings that
+   split a smooth change end the search, and the solve goes on). Every
+   adaptive method (fixed-step ones with find_jumps 1) first scans sigma_t
+   (callbacks, no transmittance callback) at 33 points, or at the spacing
+   medium.feature gives (4097 at most), and bisects where neighbours differ
+   by a factor 2: a jump or a medium's edge is made a breakpoint, a steep
+   smooth change is taught to the layer; the scan ends where its tau
+   passes 2 ln(64 / rtol). Located points are returned in result.jumps
+   (the next pixel's breakpoints). find_jumps -1: neither. A feature
+   narrower than the scan's spacing may go unseen: give medium.feature.
 
    ==========================================================================
    EXPONENTIAL FITTING (options.exponential)
    ==========================================================================
-   In a thick medium Tr S falls by exp(-sigma_t h) over a step, and a
-   polynomial rule needs many steps to follow it (or, in the RTE form,
-   blows up). With options.exponential = 1, Simpson, Gauss-Kronrod (K and
-   G alike) and the Runge-Kutta pairs (optical-depth form) take tau at
-   their nodes (closed form, transmittance callback or the layer: not
-   with HRM_TAU_COUPLED), factor an exponential of tau out of Tr S,
-   interpolate what is left by the rule's own polynomial on its nodes,
-   and integrate that against the exponential exactly (Legendre moments
-   of exp(-b (y + 1)), which are scaled modified spherical Bessel
-   functions: series, Miller's recurrence or the forward one by b, finite
-   for any b). The exponential's slope b is the least slope of tau
-   between neighbouring nodes: tau then lies on or above the line, and
-   no value left to interpolate exceeds its node's source (a chord's
-   slope, where tau bends across a coarse step, multiplied some by
-   exp(the bend) and sent L up by 1e35). With options.exponential = 2,
-   the same, and where the source is positive at every node of a step
-   and falls faster than Tr alone, b is the least slope of -ln(Tr S)
-   instead: the source's own decay is factored too (in-scattering from a
-   light seen through the medium: a directional light's Li is E exp(-mu
-   t) in a homogeneous medium).
-   So:
-   - exponential = 1: a homogeneous medium with a source polynomial of
-     degree n - 1 (n the rule's distinct nodes: Simpson 3, G7/K15 15, a
-     pair its stages' nodes) is exact at any step count and depth, without
-     a warp (a warp makes tau nonlinear in the rule's variable);
-   - exponential = 2: a homogeneous medium with a source C exp(-mu t)
-     (mu >= 0) is exact at any step count and depth, without a warp;
-     polynomial sources that rise are exact as with 1, falling ones are
-     not (their decay is fitted as an exponential);
-   - each step's sum stays between its nodes' least and largest fitted
-     value times the exponential's integral, and under a warp also
-     between their least and largest S times the step's integral of Tr
-     in t (Tr exponential between nodes; widened by the spread of its
-     rates where sigma_t varies): L >= 0, and L <= sup(S / sigma_t) (1 -
-     Tr) in a homogeneous medium, however thick, with or without a warp;
-   - sigma_t -> 0 uses the moments' series (no 0/0), sigma_t h -> inf
-     their asymptotic form (no overflow); with 2, the fitted values are
-     taken in logarithms relative to the step's first node (no overflow
-     whatever the source's decay);
-   - the embedded estimates (pairs) are those of the fitted values times
-     the exponential's mass over the step; Gauss-Kronrod's is |K - G|,
-     and with 2 its checks of the source at an interval's ends and at
-     the parent's sample extrapolate and interpolate ln S (an
-     exponential source is no mismatch);
-   - tau from a transmittance callback is -ln Tr, known only as a bound
-     where Tr underflows (tau > 708 in double, 87 in float): a step whose
-     second node is there while its first is not is an upper bound. The
-     adaptive rules count it as error and refine; Simpson, like the
-     analytic march across such a step, returns HRM_WARN_ROUNDOFF where it
-     matters beyond round-off. A source that underflows to 0 at a node
-     (float, deep in a shadow) ends the fit of its decay for that step.
-   It is an option on the existing methods rather than new methods: the
-   nodes, the adaptivity and the estimates are the rules' own, and only
-   the weights change with the step's optical depth; nested Simpson, the
-   fixed-step IVP solvers and the RTE form keep their plain rules
-   (HRM_ERR_BAD_OPTION). Relation to the forms: the fit is a quadrature of
-   L = int Tr S dt, the optical-depth form's integral; the RTE form's
-   stiffness (dL/dt = S - sigma_t L) is what it avoids, and for that form
-   the analytic march (HRM_ANALYTIC_MARCH) is the stable choice.
-   Cost per step: one set of n moments per channel and slope (grey media
-   and homogeneous steps: once), with 2 also a logarithm per node and
-   channel; no callback, no sample. When to choose it: optically thick
-   media (sigma_t h >> 1 at the steps you can afford) and clouds; 2 when
-   the in-scattered light itself is attenuated along the ray (a light
-   through the medium), 1 for emission and sources that are not. The
-   bench's "Exponential fitting" section (bench/results/summary.md)
-   measures both against the plain rules and the analytic march on the
-   thick scenes (sigma_t T up to 1e3) and a heterogeneous cloud (sigma_t T
-   100-500). As sigma_t -> 0 it tends to the interpolatory rule on the
-   same nodes: Simpson's and Kronrod's own weights; for a pair, the
-   interpolatory weights of its distinct nodes (not its tableau's b).
+   In a thick medium Tr S falls by exp(-sigma_t h) over a step. With 1,
+   Simpson, Gauss-Kronrod and the pairs (optical-depth form; tau from a
+   closed form, the callback or the layer) factor
+   the exponential of tau (its least slope between nodes) out of Tr S and
+   integrate the rule's interpolant of the rest against it exactly
+   (Legendre moments of exp(-b (y + 1))). With 2, where the source falls
+   faster than Tr, the slope of -ln(Tr S) instead (a light seen through
+   the medium). Without a warp: 1 is exact for a homogeneous medium and a
+   source polynomial of the rule's degree, 2 for a source C exp(-mu t),
+   at any step count and depth; L >= 0 always. As sigma_t -> 0 it is the
+   plain rule. Other methods, the RTE form, coupled tau and the stream:
+   HRM_ERR_BAD_OPTION. For optically thick media and clouds; 2 where Li
+   itself is attenuated along the ray.
 
    ==========================================================================
    TRANSMITTANCE (options.tau_mode, options.tau_tol)
    ==========================================================================
-   tau is integrated in t, over the actual distances between abscissae,
-   never in the warp's variable u (where dt/du is nearly singular at a
-   warp's ends). A constant sigma_t given through callbacks therefore gives
-   the L and Tr of the same medium flagged HRM_MEDIUM_HOMOGENEOUS, to
-   round-off, under every warp and for every method. A closed form (the
-   homogeneous flag, or the transmittance callback) is always used where
-   given. Otherwise:
-   Defaults: decoupled for the adaptive methods, for the fixed-step ones
-   with an exponential fit and for Simpson, RK4 and Adams-Bashforth under
-   a warp; the stream for the rectangle rule, Monte Carlo and Euler under
-   a warp; coupled for the fixed-step methods without a warp (what N
-   says: N or 2N + 1 medium evaluations, none else) and for
-   hrm_transmittance with a named fixed-step method on a finite ray;
-   coupled always for the analytic march.
-   HRM_TAU_STREAM (fixed-step methods under a warp, which spaces their
-       nodes for a light, not for the medium): sigma_t at the
-       nodes, which the source needs anyway, and at extra points in t where
-       the nodes are sparsest (the warp's grid in t filled to a common
-       width; a user warp: each gap its share by length of the points
-       left): at most 16, and at most 2N + 8 samples in all (2N + 17 for
-       Simpson and RK4, whose 2N + 1 nodes leave too few), two more per
-       breakpoint (its sides); tau from point to point by the cubic
-       through the points around each interval (the last interval, until
-       the next point comes, from the points before it). A constant medium
-       is exact. Measured on a light 0.3 from a ray through a medium
-       varying +-50% (bench/results/summary.md, the transmittance table's
-       column (c)): L within about 2x of its error with the exact Tr at
-       N = 8, 32, 128 for the rectangle rule, Monte Carlo and Euler, at 24
-       to 146 samples where the layer takes 25 to 177. A medium with
-       detail finer than the nodes' spacing far from the light is not
-       resolved by 16 extra samples: Simpson under the spot's warp in
-       make render's smoke (fBm, five octaves) at N = 32, RMSE 9e-3 with
-       the stream against 1e-3 with the layer, which is why the
-       fourth-order rules keep the layer by default.
-   HRM_TAU_DECOUPLED  sigma_t is sampled on its own abscissae,
-       apart from the source samples (decoupled ray marching: Kulla and
-       Fajardo 2012; Munoz 2014 s.6), on panels in t that march along the
-       ray: Chebyshev interpolation of degree 8, then 16, on each panel,
-       the panel accepted when its estimated error of tau, weighted by Tr
-       at its start, is at most tau_tol times its own increment of tau or
-       times 1/64, the larger. L's relative error from tau is then below
-       tau_tol (1 + K/64), K the panels thinner than 1/64 in tau, whatever
-       the warp does with the source samples, and no effort goes where Tr
-       is already 0. (The floor matters at a kink of sigma, the edge of a
-       cloud's iso-surface: relative to its own increment alone a panel
-       there would shrink to about tau_tol of the ray.) A rejected panel's
-       largest and smallest samples are
-       remembered, and a later panel over one must reproduce it: a thin
-       feature once sampled is not lost when the panel that saw it is
-       split; what the medium scan saw is kept so for every march, also
-       one begun again past the panel table. A
-       feature narrower than the spacing of the samples of a panel
-       (the first spans 8 mean free paths of the densest channel at t0, or
-       the whole ray if that is thinner: 9 samples) with nothing around it
-       can still be missed where the medium scan (BREAKPOINTS) did not see
-       it either: there, give a closed-form transmittance or
-       split the ray at the medium's boundaries.
-       Cost: medium evaluations only (no Le or Li call), about
-       16 per panel; a smooth medium varying by +-50% over the ray takes
-       50-200 of them at the default tau_tol, a constant one 9, a jump in
-       sigma (a medium's boundary) a few hundred. When a sigma evaluation
-       costs as much as a shadow ray, loosen tau_tol or couple.
-   HRM_TAU_COUPLED  no extra medium evaluation: tau at each node comes from
-       the sigma_t samples at the source nodes at the rule's own order (the
-       papers' way; a fixed-step method's error stays of its order, and a
-       medium thinner than the nodes' spacing is missed as the source's
-       detail would be). sigma_t at the first node is integrated over the
-       distance in t exactly and only the rest by the rule in u, so a
-       constant medium is exact; a varying one under a warp is integrated
-       where the warp puts the source samples, which is sparse far from a
-       light: the weakness of quadrature in heterogeneous media that Munoz
-       2014 s.6 reports.
-   hrm_transmittance ignores options.warp (tau in t needs none), except
-   that an infinite ray ends where the warp puts its last abscissa.
-   Both forms: the RTE form integrates Tr in its own state (dTr/dt =
-   -sigma_t Tr), from sigma_t at its stages, unless a closed form is given.
+   tau is integrated in t, never in u: a constant sigma_t through callbacks
+   gives the L and Tr of the homogeneous flag under every warp. A closed
+   form (the homogeneous flag, the transmittance callback) is used where
+   given; the RTE form carries Tr in its state. Otherwise options.tau_mode:
+   HRM_TAU_DECOUPLED  (default: adaptive methods; fixed-step ones with a fit,
+       or Simpson, RK4 and Adams-Bashforth under a warp) sigma_t on its own
+       abscissae (Kulla and Fajardo 2012; Munoz 2014 s.6): panels in t,
+       Chebyshev interpolation of degree 8 then 16, each accepted when its
+       error of tau, weighted by Tr at its start, is at most tau_tol times
+       its increment of tau or 1/64, the larger; L's relative error from
+       tau stays below tau_tol (1 + K/64), K the panels thinner than 1/64.
+       tau_tol 0: rtol/8 (adaptive), 0.01 N^-order (fixed-step). A sample
+       the scan or a missed node saw is kept for every later march.
+   HRM_TAU_STREAM  (default: the rectangle rule, Monte Carlo and Euler under
+       a warp) sigma_t at the nodes and at most 16 more points in t where
+       the warp leaves them sparsest (2N + 8 samples; 2N + 17 for Simpson
+       and RK4), tau by local cubics in t.
+   HRM_TAU_COUPLED  (default: fixed-step methods without a warp, the
+       analytic march) sigma_t from the source nodes at the rule's order,
+       no extra medium evaluation (the papers' way); sigma_t at the first
+       node is integrated exactly in t, so a constant medium is exact.
 
    ==========================================================================
    SHADOW RAYS (hrm_transmittance without a method)
    ==========================================================================
-   With options NULL or options.method 0, hrm_transmittance is a shadow-ray
-   estimator: sigma_t by Simpson panels in t, the worst split first (steps,
-   rtol, tau_mode and tau_tol do not apply), to
-       |Tr - exact| <= tr_tol max(Tr, cutoff)      (tr_tol 0: 1e-3)
-   where its error estimate holds: over the ray (or a segment of it), the
-   larger of |sum e| and 2 sqrt(sum e^2), e a panel's Simpson on its halves
-   minus Simpson on it (panel errors in noise add like a random walk). The
-   ray starts as 4 panels (17 lookups), and where medium.feature is given no
-   first panel is wider than it: a slab between the first samples is not
-   seen (give feature). cutoff > 0 takes the ray in segments, left to right,
-   and stops after the one where every channel's Tr falls below it: the Tr
-   returned is the one reached there, at least the exact Tr(t0, t1), and
-   stats.t_cut says where. Cost: lookups of sigma_t only (one per medium
-   evaluation). bench/results/shadow.md measures them and the rays beyond
-   tr_tol on a smooth medium, fBm smoke and a trilinear voxel grid: at most
-   0.1% at tr_tol >= 1e-3, up to 1.8% at 1e-4 and 1e-5 (at most 7.1 times
-   tr_tol: a panel whose two rules agree by chance is not split). A named
-   method integrates sigma_t as hrm_solve does (above).
+   With options NULL or options.method 0, hrm_transmittance integrates
+   sigma_t by Simpson panels in t, the worst first, to
+       |Tr - exact| <= tr_tol max(Tr, cutoff)      (tr_tol 0: 1e-3),
+   the error of a run of panels being the larger of |sum e| and
+   2 sqrt(sum e^2). It starts with 4 panels (17 lookups), none wider than
+   medium.feature where given. cutoff > 0: segments left to right, ending
+   once every channel's Tr is below it (that Tr returned, stats.t_cut where).
+   bench/results/shadow.md: at most 0.1% of rays beyond tr_tol at tr_tol
+   >= 1e-3, 1.8% at 1e-4 and 1e-5. A named method integrates as hrm_solve
+   (options.warp only ends an infinite ray).
 
    ==========================================================================
-   WHAT hrm DOES NOT DO
-   ==========================================================================
-   It does not trace rays, sample lights or evaluate phase functions: Li is
-   the host's. It does not handle media whose coefficients depend on
-   direction, nor multiple scattering beyond what the host puts into Li.
+   NOT DONE BY hrm: tracing rays, sampling lights, phase functions (Li is
+   the host's); direction-dependent media; multiple scattering beyond Li.
+   The reasoning and measurements behind these sections: bench/README.md.
 
    LICENSE: MIT, see the end of this file.
 */
@@ -1270,7 +854,7 @@ HRM_API hrm_status hrm_sphere_breaks(const hrm_real origin[3], const hrm_real di
                                      hrm_real out[2], int *count);
 
 /* Lights and sphere occluders that hrm_light_options turns into a warp and
-   breakpoints for one ray (LIGHTS in the manual). */
+   breakpoints for one ray (IMPORTANCE SAMPLING in the manual). */
 typedef enum hrm_light_kind {
     HRM_LIGHT_POINT = 1,
     HRM_LIGHT_SPOT,
@@ -4141,7 +3725,7 @@ static void hrm__efit_panel(const hrm__ctx *c, const hrm__efit *F, const hrm__pt
    (no warp, distance and user warps: exact for a constant S / sigma_t,
    never above sup(S / sigma_t) (1 - Tr)), or under the equiangular warp
    gq du, S dt/du held constant over the step in u (Kulla and Fajardo
-   2012); IMPORTANCE SAMPLING in the manual says what each holds. */
+   2012). */
 static void hrm__march(hrm__ctx *c, int N, hrm_real xi, hrm_real L[HRM__CH],
                        hrm_real tau[HRM__CH])
 {

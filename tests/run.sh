@@ -224,6 +224,25 @@ else
     fail=$((fail + 1))
 fi
 
+# The manual (hrm.h's top comment, its closing line included) is a reference
+# of at most 300 lines besides its quick start program and its BAD INPUT
+# section; the long form lives in bench/README.md ("Design notes").
+configs=$((configs + 1))
+man=$(awk '
+    /^\*\// { print n + 1; exit }
+    /---- quick start begin ----/ { skip = 1 }
+    /^   BAD INPUT$/ { skip = 2; n-- }
+    skip == 2 && /^   =====/ && body { skip = 0 }
+    skip == 2 && !/^   =====/ && !/^   BAD INPUT$/ { body = 1 }
+    !skip { n++ }
+    /---- quick start end ----/ { skip = 0 }
+' hrm.h)
+if [ "$man" -le 300 ] && [ "$man" -ge 100 ]; then
+    pass=$((pass + 1)); echo "manual: $man lines besides the quick start and BAD INPUT (at most 300)"
+else
+    echo "manual: $man lines besides the quick start and BAD INPUT (at most 300)"; fail=$((fail + 1))
+fi
+
 # The examples build with warnings as errors (make render and the per-ray
 # example run them; here they only have to compile).
 configs=$((configs + 1))
