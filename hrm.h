@@ -540,26 +540,28 @@ typedef enum hrm_status {
 /* Methods. HRM_METHOD_DEFAULT (0) lets hrm choose (HRM_NESTED_SIMPSON).
    One list: the enum, the names and the implementation's method table
    (family, default steps, order on smooth integrands, whether the RTE form
-   applies, tableau) come from it, so they cannot drift apart. */
+   applies, tableau, whether an exponential fit applies, the tau stream: 0
+   not, 1 on request, 2 the default under a warp) come from it, so they
+   cannot drift apart. */
 #define HRM__METHOD_LIST(X)                                                   \
-    X(HRM_RECTANGLE, "rectangle", HRM__FIXED_QUAD, 32, 2, 0, 0)                \
-    X(HRM_SIMPSON, "simpson", HRM__FIXED_QUAD, 32, 4, 0, 0)                    \
-    X(HRM_MONTE_CARLO, "monte-carlo", HRM__FIXED_QUAD, 32, 0.5, 0, 0)          \
-    X(HRM_EULER, "euler", HRM__FIXED_IVP, 32, 1, 1, &hrm__euler)               \
-    X(HRM_RK4, "rk4", HRM__FIXED_IVP, 32, 4, 1, &hrm__rk4)                     \
-    X(HRM_ADAMS_BASHFORTH, "adams-bashforth", HRM__FIXED_IVP, 32, 4, 1, &hrm__rk4) \
-    X(HRM_NESTED_SIMPSON, "nested-simpson", HRM__ADAPTIVE_QUAD, 2, 6, 0, 0)    \
-    X(HRM_GAUSS_KRONROD, "gauss-kronrod", HRM__ADAPTIVE_QUAD, 1, 22, 0, 0)     \
-    X(HRM_BOGACKI_SHAMPINE, "bogacki-shampine", HRM__PAIR, 0, 3, 1, &hrm__bs)  \
-    X(HRM_DORMAND_PRINCE, "dormand-prince", HRM__PAIR, 0, 5, 1, &hrm__dp)      \
-    X(HRM_FEHLBERG, "fehlberg", HRM__PAIR, 0, 4, 1, &hrm__rkf)                 \
-    X(HRM_CASH_KARP, "cash-karp", HRM__PAIR, 0, 4, 1, &hrm__ck)                \
-    X(HRM_VERNER, "verner", HRM__PAIR, 0, 6, 1, &hrm__vr)                     \
-    X(HRM_ANALYTIC_MARCH, "analytic-march", HRM__FIXED_QUAD, 32, 2, 0, 0)
+    X(HRM_RECTANGLE, "rectangle", HRM__FIXED_QUAD, 32, 2, 0, 0, 0, 2)          \
+    X(HRM_SIMPSON, "simpson", HRM__FIXED_QUAD, 32, 4, 0, 0, 1, 1)              \
+    X(HRM_MONTE_CARLO, "monte-carlo", HRM__FIXED_QUAD, 32, 0.5, 0, 0, 0, 2)    \
+    X(HRM_EULER, "euler", HRM__FIXED_IVP, 32, 1, 1, &hrm__euler, 0, 2)         \
+    X(HRM_RK4, "rk4", HRM__FIXED_IVP, 32, 4, 1, &hrm__rk4, 0, 1)               \
+    X(HRM_ADAMS_BASHFORTH, "adams-bashforth", HRM__FIXED_IVP, 32, 4, 1, &hrm__rk4, 0, 1) \
+    X(HRM_NESTED_SIMPSON, "nested-simpson", HRM__ADAPTIVE_QUAD, 2, 6, 0, 0, 0, 0) \
+    X(HRM_GAUSS_KRONROD, "gauss-kronrod", HRM__ADAPTIVE_QUAD, 1, 22, 0, 0, 1, 0) \
+    X(HRM_BOGACKI_SHAMPINE, "bogacki-shampine", HRM__PAIR, 0, 3, 1, &hrm__bs, 1, 0) \
+    X(HRM_DORMAND_PRINCE, "dormand-prince", HRM__PAIR, 0, 5, 1, &hrm__dp, 1, 0) \
+    X(HRM_FEHLBERG, "fehlberg", HRM__PAIR, 0, 4, 1, &hrm__rkf, 1, 0)           \
+    X(HRM_CASH_KARP, "cash-karp", HRM__PAIR, 0, 4, 1, &hrm__ck, 1, 0)          \
+    X(HRM_VERNER, "verner", HRM__PAIR, 0, 6, 1, &hrm__vr, 1, 0)                \
+    X(HRM_ANALYTIC_MARCH, "analytic-march", HRM__FIXED_QUAD, 32, 2, 0, 0, 0, 0)
 
 typedef enum hrm_method {
     HRM_METHOD_DEFAULT = 0,
-#define HRM__METHOD_ENUM(name, text, family, steps, order, rte, tableau) name,
+#define HRM__METHOD_ENUM(name, text, family, steps, order, rte, tableau, fit, stream) name,
     HRM__METHOD_LIST(HRM__METHOD_ENUM)
 #undef HRM__METHOD_ENUM
     HRM_METHOD_COUNT /* one past the last method */
@@ -1282,12 +1284,18 @@ typedef struct hrm__method_info {
     double order;              /* on smooth integrands (Monte Carlo: 1/2) */
     int rte;                   /* HRM_FORM_RTE applies (IVP solvers) */
     const hrm__tableau *tb;    /* IVP solvers */
+    int fit;                   /* options.exponential applies */
+    int stream;                /* HRM_TAU_STREAM: 0 not, 1 on request (its
+                                  nodes in t, tau at each), 2 also the
+                                  default under a warp (order 2 at most:
+                                  its 16 extra samples stay below the
+                                  rule's own error) */
 } hrm__method_info;
 
 static const hrm__method_info hrm__methods[HRM_METHOD_COUNT] = {
-    {"default", HRM__FIXED_QUAD, 32, 4, 0, 0}, /* never read: resolved to HRM_NESTED_SIMPSON first */
-#define HRM__METHOD_INFO(name, text, family, steps, order, rte, tableau) \
-    {text, family, steps, order, rte, tableau},
+    {"default", HRM__FIXED_QUAD, 32, 4, 0, 0, 0, 0}, /* never read: resolved to HRM_NESTED_SIMPSON first */
+#define HRM__METHOD_INFO(name, text, family, steps, order, rte, tableau, fit, stream) \
+    {text, family, steps, order, rte, tableau, fit, stream},
     HRM__METHOD_LIST(HRM__METHOD_INFO)
 #undef HRM__METHOD_INFO
 };
@@ -5578,16 +5586,13 @@ static hrm_status hrm__resolve(const hrm_options *in, hrm_options *o, int tau_in
        rule that is a quadrature: not the RTE form, not coupled tau */
     if (o->exponential < 0 || o->exponential > 2) return HRM_ERR_BAD_OPTION;
     if (o->exponential &&
-        ((o->method != HRM_SIMPSON && o->method != HRM_GAUSS_KRONROD &&
-          hrm__methods[o->method].family != HRM__PAIR) ||
-         o->form == HRM_FORM_RTE || o->tau_mode == HRM_TAU_COUPLED))
+        (!hrm__methods[o->method].fit || o->form == HRM_FORM_RTE || o->tau_mode == HRM_TAU_COUPLED))
         return HRM_ERR_BAD_OPTION;
     if (o->gk_rule == HRM_GK_RULE_DEFAULT) o->gk_rule = HRM_GK_K15;
     if ((int)o->tau_mode < 0 || (int)o->tau_mode > (int)HRM_TAU_STREAM) return HRM_ERR_BAD_OPTION;
     /* the stream needs nodes in increasing t, with tau at each: a
        fixed-step rule's (the analytic march takes its own), no fit */
-    if (o->tau_mode == HRM_TAU_STREAM &&
-        (hrm__methods[o->method].family > HRM__FIXED_IVP || o->method == HRM_ANALYTIC_MARCH || o->exponential))
+    if (o->tau_mode == HRM_TAU_STREAM && (!hrm__methods[o->method].stream || o->exponential))
         return HRM_ERR_BAD_OPTION;
     if (o->tau_mode == HRM_TAU_DEFAULT) o->tau_mode = d.tau_mode;
     /* fixed-step methods: tau from their own nodes (what N says, in sigma
@@ -5600,8 +5605,7 @@ static hrm_status hrm__resolve(const hrm_options *in, hrm_options *o, int tau_in
        with the layer, for 103 and 478 lookups a pixel) and with a fit */
     if (o->tau_mode == HRM_TAU_DEFAULT)
         o->tau_mode = (o->warp.kind == HRM_WARP_NONE || tau_in_t) && !o->exponential ? HRM_TAU_COUPLED
-                    : !o->exponential && (o->method == HRM_RECTANGLE || o->method == HRM_MONTE_CARLO ||
-                                          o->method == HRM_EULER)
+                    : !o->exponential && hrm__methods[o->method].stream == 2
                         ? HRM_TAU_STREAM
                         : HRM_TAU_DECOUPLED;
     if (!(HRM__FINITE(o->rtol) && o->rtol >= 0 && HRM__FINITE(o->atol) && o->atol >= 0 &&
@@ -6523,8 +6527,6 @@ static HRM__NOINLINE void hrm__shadow_march(hrm__ctx *c, const hrm_options *o, h
     }
 }
 
-/* The one solve behind hrm_solve and hrm_transmittance (tr_only: no
-   source, so only sigma_t is integrated). */
 /* One call's arguments, carried through the frames that hold the storage
    it needs (hrm__stage). */
 typedef struct hrm__job {
@@ -6651,6 +6653,8 @@ static hrm_status hrm__stage(hrm__job *j)
     return hrm__solve_job(j);
 }
 
+/* The one solve behind hrm_solve and hrm_transmittance (tr_only: no
+   source, so only sigma_t is integrated). */
 static hrm_status hrm__run(const hrm_medium *m, hrm_real t0, hrm_real t1,
                            const hrm_options *in, int tr_only, hrm_real L[HRM__CH],
                            hrm_real Tr[HRM__CH], hrm_real err[HRM__CH], hrm_stats *stats,
