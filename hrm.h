@@ -266,8 +266,8 @@
    from options.seed alone: the same inputs give the same answer.
    Stack (tests/stack.c; the worst over every variant, double, 3 channels,
    gcc and clang -O2; a solve holds only the storage it uses): fixed-step
-   methods 7-11 KiB on constants, 34 at most (the transmittance layer, 18);
-   the pairs 14 and 40; Gauss-Kronrod 92, nested Simpson 122 (their
+   methods 7-11 KiB on constants, 33 at most (the transmittance layer, 18);
+   the pairs 14 and 40; Gauss-Kronrod 92, nested Simpson 120 (their
    intervals); the shadow-ray estimator 8. About 2.2 times that with 8
    channels, half in float, at most (48 + 48 HRM_CHANNELS) KiB in double;
    twice with a shadow ray solved inside Li.
@@ -3213,114 +3213,102 @@ static void hrm__node_tr(hrm__ctx *c, hrm__pt *pt, hrm_real s_off)
     for (i = 0; i < HRM__CH; ++i) pt->tr[i] = HRM_EXP(-pt->tau[i]);
 }
 
-static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
+/* hrm__eval, step 1: the memo. Where abscissa s was evaluated lately (or
+   is the ray's end), its callbacks' values are taken again: 1. */
+static int hrm__memo_hit(hrm__ctx *c, hrm_real p, hrm_real s, hrm_real s_raw, hrm__pt *pt)
 {
-    const hrm_medium *m = c->m;
-    hrm_real sa[HRM__CH], ss[HRM__CH], st[HRM__CH], v[HRM__CH], q[HRM__CH];
-    hrm_real J, s, s_raw, sig[HRM__CH], vmax[HRM__CH];
-    int i, em = 0, sc = 0, called, sig_known;
-
-    hrm__map(c, p, &pt->off, &J);
-    pt->p = p;
-    pt->J = J;
-    s_raw = hrm__abscissa(c, pt->off);
-    s = hrm__side(c, s_raw);
-    if (c->use_memo) {
-        int k, hit;
-        for (k = 0; k < c->nmemo && c->memo[k].s != s; ++k) {}
-        hit = k < c->nmemo;
-        if (!hit && c->have_end && s == c->s_end) {
-            k = HRM__MEMO;
-            hit = 1;
-        }
-        if (hit) {
-            /* A warp's node that t cannot tell from another (a ray
-               farther from the origin than it is long): the integrand is
-               sampled as a staircase in t, which no estimate sees (the
-               equiangular map of a light 1e-12 from a ray 1e-6 long at
-               1e9: L 64% low with HRM_OK). hrm__finish warns. (Not one
-               node computed twice, its p a few ulps apart: a pair's node
-               reached by two sums, on a ray clipped to a cloud's bounds
-               under a warp, warned for nothing.) */
-            if (k < HRM__MEMO && c->warp != HRM_WARP_NONE && HRM_FABS(c->t0) > c->T &&
-                HRM_FABS(c->memo[k].p - p) >
-                    8 * HRM__EPS * (HRM_FABS(p) > HRM_FABS(c->memo[k].p) ? HRM_FABS(p) : HRM_FABS(c->memo[k].p)))
-                c->unresolved = 1;
-            /* the callbacks' values at s again; Tr from the node's own
-               offset (it resolves t0 + off finer than s does) */
-            if (c->homog || c->decoupled) {
-                hrm__node_tr(c, pt, pt->off + (s - s_raw));
-            } else {
-                memcpy(pt->tr, c->memo[k].tr, sizeof pt->tr);
-                hrm__tau_of_tr(pt);
-            }
-            for (i = 0; i < HRM__CH; ++i) {
-                pt->gq[i] = c->memo[k].q[i] * J;
-                pt->gs[i] = c->need_st ? c->memo[k].st[i] * J : 0;
-            }
-            return;
-        }
+    int i, k;
+    if (!c->use_memo) return 0;
+    for (k = 0; k < c->nmemo && c->memo[k].s != s; ++k) {}
+    if (k == c->nmemo) {
+        if (!(c->have_end && s == c->s_end)) return 0;
+        k = HRM__MEMO;
     }
-    if (c->homog) {
-        memcpy(sa, c->sa, sizeof sa);
-        memcpy(ss, c->ss, sizeof ss);
-        memcpy(st, c->st, sizeof st);
+    /* A warp's node that t cannot tell from another (a ray farther from
+       the origin than it is long): the integrand is sampled as a
+       staircase in t, which no estimate sees (the equiangular map of a
+       light 1e-12 from a ray 1e-6 long at 1e9: L 64% low with HRM_OK).
+       hrm__finish warns. (Not one node computed twice, its p a few ulps
+       apart: a pair's node reached by two sums, on a ray clipped to a
+       cloud's bounds under a warp, warned for nothing.) */
+    if (k < HRM__MEMO && c->warp != HRM_WARP_NONE && HRM_FABS(c->t0) > c->T &&
+        HRM_FABS(c->memo[k].p - p) >
+            8 * HRM__EPS * (HRM_FABS(p) > HRM_FABS(c->memo[k].p) ? HRM_FABS(p) : HRM_FABS(c->memo[k].p)))
+        c->unresolved = 1;
+    /* the callbacks' values at s again; Tr from the node's own offset (it
+       resolves t0 + off finer than s does) */
+    if (c->homog || c->decoupled) {
         hrm__node_tr(c, pt, pt->off + (s - s_raw));
     } else {
-        int medium = hrm__coeffs(c, s, c->use_le && !c->per_length, c->use_li, c->need_st,
-                                 sa, ss, st);
-        if (c->decoupled) {
-            const hrm__tpanel *tp;
-            hrm__node_tr(c, pt, pt->off + (s - s_raw));
-            /* sigma_a or sigma_s here above twice every sigma_t the layer's
-               panel sampled: the panel missed something between its nodes
-               (a dense slab); hrm__dispatch samples it there and solves
-               again */
-            tp = &c->tau->tab[c->tau->hit % HRM_TAU_PANELS];
-            /* (not at a breakpoint, whose sample is on the other panel's side) */
-            for (i = 0; i < HRM__CH && c->tau->count > 0 && !c->layer_miss && s == s_raw; ++i) {
-                hrm_real lower = sa[i] > ss[i] ? sa[i] : ss[i];
-                if (lower > 2 * tp->smax[i] + HRM__R(1e-30)) {
-                    c->layer_miss = 1;
-                    c->miss_off = pt->off;
-                    c->miss_s = s;
-                }
-            }
-        } else if (c->src == HRM__TAU_STREAM) {
-            hrm__stream_to(c, pt->off, 0, st);
-            for (i = 0; i < HRM__CH; ++i) {
-                pt->tau[i] = c->sm.tau[i];
-                pt->tr[i] = HRM_EXP(-pt->tau[i]);
-            }
-        } else if (c->closed) {
-            if (hrm__tr_call(c, s, pt->tr)) medium = 0; /* counted there: one per abscissa */
-            hrm__tau_of_tr(pt);
-        }
-        c->stats.medium_evals += medium;
+        memcpy(pt->tr, c->memo[k].tr, sizeof pt->tr);
+        hrm__tau_of_tr(pt);
     }
-    /* sigma_t here, where known, for the bound on S / sigma_t */
-    sig_known = c->homog || c->need_st || !m->sigma_t;
     for (i = 0; i < HRM__CH; ++i) {
-        sig[i] = c->homog ? c->st[i] : c->need_st ? st[i] : sa[i] + ss[i];
-        vmax[i] = 0;
+        pt->gq[i] = c->memo[k].q[i] * pt->J;
+        pt->gs[i] = c->need_st ? c->memo[k].st[i] * pt->J : 0;
     }
-    if (c->coupled) {
-        /* Coupled tau: the rules integrate sigma_t - sbar in the warped
-           variable and sbar over the distance in t exactly, so a constant
-           sigma_t is exact under any warp. */
-        if (!c->have_sbar) {
-            memcpy(c->sbar, st, sizeof st);
-            c->have_sbar = 1;
-        }
-        for (i = 0; i < HRM__CH; ++i) st[i] -= c->sbar[i];
-    }
+    return 1;
+}
 
-    /* A term whose coefficient vanishes in every channel is not called:
-       no shadow ray where nothing scatters. */
+/* hrm__eval, step 2: the medium at s (sa, ss, st: the coefficients the
+   source and tau need) and Tr at the node, from wherever tau comes. */
+static void hrm__medium_at(hrm__ctx *c, hrm_real s, hrm_real s_raw, hrm__pt *pt, hrm_real sa[HRM__CH],
+                           hrm_real ss[HRM__CH], hrm_real st[HRM__CH])
+{
+    int i, medium;
+    if (c->homog) {
+        memcpy(sa, c->sa, sizeof(hrm_real) * HRM__CH);
+        memcpy(ss, c->ss, sizeof(hrm_real) * HRM__CH);
+        memcpy(st, c->st, sizeof(hrm_real) * HRM__CH);
+        hrm__node_tr(c, pt, pt->off + (s - s_raw));
+        return;
+    }
+    medium = hrm__coeffs(c, s, c->use_le && !c->per_length, c->use_li, c->need_st, sa, ss, st);
+    if (c->decoupled) {
+        const hrm__tpanel *tp;
+        hrm__node_tr(c, pt, pt->off + (s - s_raw));
+        /* sigma_a or sigma_s here above twice every sigma_t the layer's
+           panel sampled: the panel missed something between its nodes (a
+           dense slab); hrm__dispatch samples it there and solves again */
+        tp = &c->tau->tab[c->tau->hit % HRM_TAU_PANELS];
+        /* (not at a breakpoint, whose sample is on the other panel's side) */
+        for (i = 0; i < HRM__CH && c->tau->count > 0 && !c->layer_miss && s == s_raw; ++i) {
+            hrm_real lower = sa[i] > ss[i] ? sa[i] : ss[i];
+            if (lower > 2 * tp->smax[i] + HRM__R(1e-30)) {
+                c->layer_miss = 1;
+                c->miss_off = pt->off;
+                c->miss_s = s;
+            }
+        }
+    } else if (c->src == HRM__TAU_STREAM) {
+        hrm__stream_to(c, pt->off, 0, st);
+        for (i = 0; i < HRM__CH; ++i) {
+            pt->tau[i] = c->sm.tau[i];
+            pt->tr[i] = HRM_EXP(-pt->tau[i]);
+        }
+    } else if (c->closed) {
+        if (hrm__tr_call(c, s, pt->tr)) medium = 0; /* counted there: one per abscissa */
+        hrm__tau_of_tr(pt);
+    }
+    c->stats.medium_evals += medium;
+}
+
+/* hrm__eval, step 3: the source S = sigma_a Le + sigma_s Li at s into q
+   (a term whose coefficient vanishes in every channel is not called: no
+   shadow ray where nothing scatters), and the largest S / sigma_t seen
+   (the weighted mean of Le and Li by sigma_a and sigma_s; where sigma_t
+   is not known here, the larger of the two) for the bound on L. */
+static void hrm__source(hrm__ctx *c, hrm_real s, const hrm_real sa[HRM__CH], const hrm_real ss[HRM__CH],
+                        const hrm_real st[HRM__CH], hrm_real q[HRM__CH])
+{
+    const hrm_medium *m = c->m;
+    hrm_real v[HRM__CH], vmax[HRM__CH];
+    int i, em = 0, sc = 0, called, sig_known = c->homog || c->need_st || !m->sigma_t;
     for (i = 0; i < HRM__CH; ++i) {
         em |= c->per_length || sa[i] > 0;
         sc |= ss[i] > 0;
         q[i] = 0;
+        vmax[i] = 0;
     }
     em &= c->use_le && c->status == HRM_OK;
     sc &= c->use_li;
@@ -3343,40 +3331,71 @@ static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
         }
     }
     for (i = 0; i < HRM__CH; ++i) {
+        hrm_real sig = c->homog ? c->st[i] : c->need_st ? st[i] : sa[i] + ss[i], b;
         if (!(HRM_FABS(q[i]) <= c->range)) {
             if (c->status == HRM_OK) c->status = HRM_ERR_RANGE;
             q[i] = 0;
         }
-    }
-    for (i = 0; i < HRM__CH; ++i) {
-        /* S / sigma_t, the weighted mean of Le and Li by sigma_a and
-           sigma_s; where sigma_t is not known here, the larger of the two */
-        hrm_real b = sig_known && sig[i] > 0 ? q[i] / sig[i] : vmax[i];
+        b = sig_known && sig > 0 ? q[i] / sig : vmax[i];
         if (b > c->src_max[i]) c->src_max[i] = b;
     }
     c->stats.evals += called;
+}
+
+/* hrm__eval, step 4: the node's values in the memo. */
+static void hrm__memo_store(hrm__ctx *c, hrm_real p, hrm_real s, const hrm_real q[HRM__CH],
+                            const hrm_real st[HRM__CH], const hrm__pt *pt)
+{
+    int k = s == c->s_end ? HRM__MEMO : c->memo_next;
+    c->memo[k].s = s;
+    c->memo[k].p = p;
+    memcpy(c->memo[k].q, q, sizeof c->memo[k].q);
+    memcpy(c->memo[k].st, st, sizeof c->memo[k].st);
+    memcpy(c->memo[k].tr, pt->tr, sizeof pt->tr);
+    if (k < HRM__MEMO) {
+        c->memo_next = (k + 1) % HRM__MEMO;
+        if (c->nmemo < HRM__MEMO) c->nmemo++;
+    } else {
+        c->have_end = 1;
+    }
+}
+
+/* One node at p: its abscissa s = t(p) (on its piece's side of a
+   breakpoint), Tr there, and the source times dt/dp (gq) and sigma_t
+   times dt/dp (gs, where the rules integrate tau), by the four steps
+   above. */
+static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
+{
+    hrm_real sa[HRM__CH], ss[HRM__CH], st[HRM__CH], q[HRM__CH], s, s_raw;
+    int i;
+
+    hrm__map(c, p, &pt->off, &pt->J);
+    pt->p = p;
+    s_raw = hrm__abscissa(c, pt->off);
+    s = hrm__side(c, s_raw);
+    if (hrm__memo_hit(c, p, s, s_raw, pt)) return;
+    hrm__medium_at(c, s, s_raw, pt, sa, ss, st);
+    if (c->coupled) {
+        /* Coupled tau: the rules integrate sigma_t - sbar in the warped
+           variable and sbar over the distance in t exactly, so a constant
+           sigma_t is exact under any warp. */
+        if (!c->have_sbar) {
+            memcpy(c->sbar, st, sizeof st);
+            c->have_sbar = 1;
+        }
+    }
+    hrm__source(c, s, sa, ss, st, q);
+    if (c->coupled)
+        for (i = 0; i < HRM__CH; ++i) st[i] -= c->sbar[i];
     for (i = 0; i < HRM__CH; ++i) {
-        pt->gq[i] = q[i] * J;
-        pt->gs[i] = c->need_st ? st[i] * J : 0; /* a closed form has tau already */
+        pt->gq[i] = q[i] * pt->J;
+        pt->gs[i] = c->need_st ? st[i] * pt->J : 0; /* a closed form has tau already */
         if (!(HRM_FABS(pt->gq[i]) <= c->range && HRM_FABS(pt->gs[i]) <= c->range)) {
             if (c->status == HRM_OK) c->status = HRM_ERR_RANGE; /* a warp's Jacobian */
             pt->gq[i] = pt->gs[i] = 0;
         }
     }
-    if (c->use_memo) {
-        int k = s == c->s_end ? HRM__MEMO : c->memo_next;
-        c->memo[k].s = s;
-        c->memo[k].p = p;
-        memcpy(c->memo[k].q, q, sizeof q);
-        memcpy(c->memo[k].st, st, sizeof st);
-        memcpy(c->memo[k].tr, pt->tr, sizeof pt->tr);
-        if (k < HRM__MEMO) {
-            c->memo_next = (k + 1) % HRM__MEMO;
-            if (c->nmemo < HRM__MEMO) c->nmemo++;
-        } else {
-            c->have_end = 1;
-        }
-    }
+    if (c->use_memo) hrm__memo_store(c, p, s, q, st, pt);
 }
 
 /* Closed-form Tr(t0, t1): no callback for a homogeneous medium, one

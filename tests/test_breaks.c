@@ -864,8 +864,9 @@ static void br_sphere(void)
     }
 }
 
-/* A light 1e-3 from the ray at t = 5 (Li = 1 / ((t - 5)^2 + 1e-6)) in a
-   homogeneous medium (sigma_a 0.05, sigma_s 0.1): a narrow smooth peak. */
+/* A light 1e-3 from the ray at t = 5 (Li = 1 / ((t - 5)^2 + 1e-6)): a
+   narrow smooth peak; the thin medium it and test 9 use (sigma_a 0.05,
+   sigma_s 0.1) through one sigma callback. */
 static void br_peak_li(void *u, hrm_real t, hrm_real out[NCH])
 {
     double x = (double)t - 5;
@@ -874,7 +875,7 @@ static void br_peak_li(void *u, hrm_real t, hrm_real out[NCH])
     for (c = 0; c < NCH; ++c) out[c] = (hrm_real)(1 / (x * x + 1e-6));
 }
 
-static void br_peak_sig(void *u, hrm_real t, hrm_real sa[NCH], hrm_real ss[NCH])
+static void br_thin_sig(void *u, hrm_real t, hrm_real sa[NCH], hrm_real ss[NCH])
 {
     int c;
     (void)u;
@@ -981,7 +982,7 @@ static void br_jumps(void)
                     memset(&mp, 0, sizeof mp);
                     mp.Li = br_peak_li;
                     if (cb)
-                        mp.sigma = br_peak_sig;
+                        mp.sigma = br_thin_sig;
                     else {
                         mp.flags = HRM_MEDIUM_HOMOGENEOUS;
                         for (c = 0; c < NCH; ++c) {
@@ -1055,17 +1056,6 @@ static void br_lights_li(void *u, hrm_real t, hrm_real out[NCH])
     for (c = 0; c < NCH; ++c) out[c] = (hrm_real)br_lights_li1((const br_lights_sc *)u, (double)t);
 }
 
-static void br_lights_sig(void *u, hrm_real t, hrm_real sa[NCH], hrm_real ss[NCH])
-{
-    int c;
-    (void)u;
-    (void)t;
-    for (c = 0; c < NCH; ++c) {
-        sa[c] = (hrm_real)0.05;
-        ss[c] = (hrm_real)0.1;
-    }
-}
-
 static void br_lights(void)
 {
     static const br_lights_sc sc = {{2, 4, 6, 8}, {0.3, 0.5, 0.2, 0.8}, {1, 2, 1, 3}};
@@ -1096,7 +1086,7 @@ static void br_lights(void)
         m.user = (void *)&sc;
         m.Li = br_lights_li;
         if (cb) {
-            m.sigma = br_lights_sig;
+            m.sigma = br_thin_sig;
         } else {
             int c;
             m.flags = HRM_MEDIUM_HOMOGENEOUS;
