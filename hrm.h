@@ -160,7 +160,8 @@
    before any callback (stats zero). "at": the solve stops at the bad value
    (stats counted so far, no callback called after it). An error's result
    is L = 0, Tr = 1, error = -1, njumps = 0; nothing but the result (and
-   hrm_transmittance's stats) is written. R: see ERRORS, Range.
+   hrm_transmittance's stats) is written. R: see ERRORS, Range. Where two
+   classes meet, the status is that of the one listed first.
    pointers
      medium NULL, result NULL (hrm_transmittance: Tr NULL, stats zeroed)
                                    HRM_ERR_NULL_ARGUMENT, before
@@ -2624,8 +2625,7 @@ static hrm_status hrm__warp_valid(const hrm_warp *w)
 static hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_warp *w)
 {
     int inf = !HRM__FINITE(c->T);
-    hrm_real T = c->T;
-    if (hrm__warp_valid(w) != HRM_OK) return HRM_ERR_BAD_WARP;
+    hrm_real T = c->T; /* (w's parameters checked: hrm__validate) */
     c->warp = w->kind;
     c->pa = 0;
     c->pb = T;
@@ -5658,27 +5658,44 @@ static hrm_status hrm__resolve(const hrm_options *in, hrm_options *o, int tau_in
     return HRM_OK;
 }
 
-/* The breakpoints, the medium's flags, callbacks and feature, and the
-   warp's parameters, in the manual's order (resolved options o). */
-static hrm_status hrm__check_input(const hrm_medium *m, hrm_real t0, hrm_real t1, const hrm_options *o)
+/* Every check of the manual's BAD INPUT table that needs no callback, in
+   its order: the interval, the options (resolved into o), the
+   breakpoints, the warp's parameters, the medium (flags, sigma given with
+   the other coefficients, feature; the constants, then their range). */
+static hrm_status hrm__validate(const hrm_medium *m, hrm_real t0, hrm_real t1, const hrm_options *in,
+                                int tr_only, hrm_options *o)
 {
+    hrm_real range = hrm__range(t1 - t0);
+    hrm_status st;
     int i;
-    if (o->nbreaks < 0 || o->nbreaks > HRM_MAX_BREAKS || (o->nbreaks > 0 && !o->breaks))
-        return HRM_ERR_BAD_BREAKS;
+    /* t1 = +inf is valid under a warp that maps it to a finite end. */
+    if (!HRM__FINITE(t0) || !(t1 >= t0) || (!HRM__FINITE(t1) && t0 == t1)) return HRM_ERR_BAD_INTERVAL;
+    if (HRM__FINITE(t1) && !HRM__FINITE(t1 - t0)) return HRM_ERR_RANGE;
+    st = hrm__resolve(in, o, tr_only && HRM__FINITE(t1));
+    if (st != HRM_OK) return st;
+    if (o->nbreaks > 0 && !o->breaks) return HRM_ERR_BAD_BREAKS;
     for (i = 0; i < o->nbreaks; ++i) {
         hrm_real b = o->breaks[i];
         if (!HRM__FINITE(b) || b < t0 || b > t1 || (i > 0 && !(b > o->breaks[i - 1])))
             return HRM_ERR_BAD_BREAKS;
     }
+    /* the warp's parameters, even where an empty ray or a transmittance
+       alone will not use them */
+    if (hrm__warp_valid(&o->warp) != HRM_OK) return HRM_ERR_BAD_WARP;
     if (m->flags & ~(HRM_MEDIUM_HOMOGENEOUS | HRM_EMISSION_PER_LENGTH)) return HRM_ERR_BAD_MEDIUM;
     if (m->sigma && (m->sigma_a || m->sigma_s || m->sigma_t)) return HRM_ERR_BAD_MEDIUM;
     if (!(HRM__FINITE(m->feature) && m->feature >= 0)) return HRM_ERR_BAD_MEDIUM;
-    /* the warp's parameters, even where an empty ray will not use them */
-    return hrm__warp_valid(&o->warp) != HRM_OK ? HRM_ERR_BAD_WARP : HRM_OK;
+    if (!(m->flags & HRM_MEDIUM_HOMOGENEOUS)) return HRM_OK;
+    for (i = 0; i < HRM__CH; ++i) {
+        hrm_real a = m->const_sigma_a[i], b = m->const_sigma_s[i];
+        if (!(HRM__FINITE(a) && HRM__FINITE(b) && a >= 0 && b >= 0 && HRM__FINITE(a + b)))
+            return HRM_ERR_BAD_MEDIUM;
+    }
+    for (i = 0; i < HRM__CH; ++i)
+        if (m->const_sigma_a[i] + m->const_sigma_s[i] > range) return HRM_ERR_RANGE;
+    return HRM_OK;
 }
 
-/* The context of one solve: medium, flags, tolerances, the warp and the
-   step bounds. Returns an error, or HRM_OK with c ready to dispatch. */
 /* The source terms a solve integrates: Le where sigma_a (or emission per
    length) can weigh it, Li where sigma_s can; neither for Tr alone. */
 static void hrm__sources(const hrm_medium *m, int tr_only, int *use_le, int *use_li)
@@ -5709,7 +5726,9 @@ static int hrm__tau_closed(hrm__tau_src src)
     return src == HRM__TAU_HOMOG || src == HRM__TAU_TRCB || src == HRM__TAU_LAYER || src == HRM__TAU_STREAM;
 }
 
-/* layer, memo, ef: the storage hrm__needs asked for (else NULL). */
+/* The context of one solve: medium, flags, tolerances, the warp and the
+   step bounds; layer, memo, ef: the storage hrm__needs asked for (else
+   NULL). Returns an error, or HRM_OK with c ready to dispatch. */
 static hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, hrm__memo *memo, hrm__efit *ef,
                              const hrm_medium *m, hrm_real t0, hrm_real t1, const hrm_options *o,
                              int tr_only)
@@ -5724,12 +5743,9 @@ static hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, hrm__memo *memo, hrm_
     c->t1 = t1;
     c->T = t1 - t0;
     c->range = hrm__range(c->T);
-    if (HRM__FINITE(t1) && !HRM__FINITE(c->T)) return HRM_ERR_RANGE;
     c->rng = o->seed;
     c->s_lo = -HRM__R(HUGE_VAL);
     c->s_hi = HRM__R(HUGE_VAL);
-    st = hrm__check_input(m, t0, t1, o);
-    if (st != HRM_OK) return st;
     c->homog = (m->flags & HRM_MEDIUM_HOMOGENEOUS) != 0;
     c->per_length = (m->flags & HRM_EMISSION_PER_LENGTH) != 0;
     c->rte = o->form == HRM_FORM_RTE && mi->rte;
@@ -5767,11 +5783,7 @@ static hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, hrm__memo *memo, hrm_
         for (i = 0; i < HRM__CH; ++i) {
             c->sa[i] = m->const_sigma_a[i];
             c->ss[i] = m->const_sigma_s[i];
-            c->st[i] = c->sa[i] + c->ss[i];
-            if (!(HRM__FINITE(c->sa[i]) && HRM__FINITE(c->ss[i]) && c->sa[i] >= 0 &&
-                  c->ss[i] >= 0 && HRM__FINITE(c->st[i])))
-                return HRM_ERR_BAD_MEDIUM;
-            if (c->st[i] > c->range) return HRM_ERR_RANGE;
+            c->st[i] = c->sa[i] + c->ss[i]; /* (checked: hrm__validate) */
         }
     }
     hrm__sources(m, tr_only, &c->use_le, &c->use_li);
@@ -5791,10 +5803,9 @@ static hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, hrm__memo *memo, hrm_
 
     if (tr_only && HRM__FINITE(c->T)) {
         /* tau alone is integrated in t: a warp only says where an
-           infinite ray ends. Its parameters are still checked. */
+           infinite ray ends (its parameters checked all the same) */
         hrm_warp none;
         memset(&none, 0, sizeof none);
-        if (hrm__warp_valid(&o->warp) != HRM_OK) return HRM_ERR_BAD_WARP;
         st = hrm__setup_warp(c, &none);
     } else {
         st = hrm__setup_warp(c, &o->warp);
@@ -6690,10 +6701,8 @@ static hrm_status hrm__run(const hrm_medium *m, hrm_real t0, hrm_real t1,
     hrm__fill(L, HRM__CH, 0);
     hrm__fill(Tr, HRM__CH, 1);
     hrm__fill(err, HRM__CH, -1);
-    /* t1 = +inf is valid under a warp that maps it to a finite end. */
-    if (!HRM__FINITE(t0) || !(t1 >= t0) || (!HRM__FINITE(t1) && t0 == t1)) return HRM_ERR_BAD_INTERVAL;
     memset(&j, 0, sizeof j);
-    st = hrm__resolve(in, &j.o, tr_only && HRM__FINITE(t1));
+    st = hrm__validate(m, t0, t1, in, tr_only, &j.o);
     if (st != HRM_OK) return st;
     j.m = m;
     j.t0 = t0;
@@ -6770,7 +6779,7 @@ HRM__DEF hrm_status hrm_solve(const hrm_medium *medium, hrm_real t0, hrm_real t1
            solve's to report, before any callback): a list of breakpoints
            loses those beyond the cut */
         hrm_options chk;
-        if (hrm__resolve(options, &chk, 0) == HRM_OK && hrm__check_input(medium, t0, t1, &chk) == HRM_OK)
+        if (hrm__validate(medium, t0, t1, options, 0, &chk) == HRM_OK)
             calls = hrm__cut_point(medium, t0, t1, options->cutoff, &tc, tr_end);
     }
     if (tc < t1 && tc > t0) {

@@ -1215,7 +1215,83 @@ static void bi_table(void)
     if (verbose()) NOTE("%d rows", n);
 }
 
+/* Two classes of bad input at once: the status is the one of the class
+   the manual's BAD INPUT table lists first (the interval, the options, the
+   breakpoints, the warp, the medium: the order hrm checks them in), for
+   every method, hrm_solve and hrm_transmittance, with the error's result. */
+static void bi_order_sig(void *user, hrm_real t, hrm_real sa[NCH], hrm_real ss[NCH])
+{
+    int c;
+    (void)user;
+    for (c = 0; c < NCH; ++c) {
+        sa[c] = (hrm_real)(0.1 + 0.05 * (double)t);
+        ss[c] = (hrm_real)0.3;
+    }
+}
+
+static void bi_order_li(void *user, hrm_real t, hrm_real out[NCH])
+{
+    int c;
+    (void)user;
+    (void)t;
+    for (c = 0; c < NCH; ++c) out[c] = 1;
+}
+
+static void bi_order(void)
+{
+    static const hrm_real unsorted[2] = {4, 2};
+    enum { N_PAIRS = 6 };
+    static const char *const what[N_PAIRS] = {
+        "t1 < t0 and steps < 0", "steps < 0 and unsorted breakpoints", "rtol < 0 and unsorted breakpoints",
+        "unsorted breakpoints and D < 0", "D < 0 and an unknown medium flag",
+        "a negative constant and one beyond R"};
+    static const hrm_status want[N_PAIRS] = {HRM_ERR_BAD_INTERVAL, HRM_ERR_BAD_STEPS, HRM_ERR_BAD_OPTION,
+                                             HRM_ERR_BAD_BREAKS, HRM_ERR_BAD_WARP, HRM_ERR_BAD_MEDIUM};
+    int k, mi, c;
+    for (k = 0; k < N_PAIRS; ++k)
+        for (mi = 0; mi < N_METHODS_ALL; ++mi) {
+            hrm_medium m;
+            hrm_options o = hrm_default_options(every_method[mi]);
+            hrm_result r;
+            hrm_real t0 = (hrm_real)0.5, t1 = (hrm_real)6.5, Tr[NCH];
+            hrm_stats st;
+            if (k == 5 && NCH < 2) continue; /* two channels needed */
+            memset(&m, 0, sizeof m);
+            m.sigma = bi_order_sig;
+            m.Li = bi_order_li;
+            o.warp.kind = HRM_WARP_EQUIANGULAR;
+            o.warp.delta = 3;
+            o.warp.D = 1;
+            if (k == 0) {
+                t1 = 0;
+                o.steps = -1;
+            }
+            if (k == 1) o.steps = -1;
+            if (k == 2) o.rtol = -1;
+            if (k >= 1 && k <= 3) {
+                o.breaks = unsorted;
+                o.nbreaks = 2;
+            }
+            if (k == 3 || k == 4) o.warp.D = -1;
+            if (k == 4) m.flags = 64u;
+            if (k == 5) {
+                m.sigma = NULL;
+                m.flags = HRM_MEDIUM_HOMOGENEOUS;
+                for (c = 0; c < NCH; ++c) m.const_sigma_a[c] = m.const_sigma_s[c] = (hrm_real)0.1;
+                m.const_sigma_a[0] = real_is_float() ? (hrm_real)FLT_MAX : (hrm_real)DBL_MAX;
+                m.const_sigma_a[1] = -1;
+            }
+            CHECK_INT(hrm_solve(&m, t0, t1, &o, &r), want[k], "%s, %s: hrm_solve's status", what[k],
+                      hrm_method_name(every_method[mi]));
+            CHECK(r.L[0] == 0 && r.Tr[0] == 1 && r.stats.evals == 0, "%s, %s: the error's result", what[k],
+                  hrm_method_name(every_method[mi]));
+            CHECK_INT(hrm_transmittance(&m, t0, t1, &o, Tr, &st), want[k], "%s, %s: hrm_transmittance's status",
+                      what[k], hrm_method_name(every_method[mi]));
+        }
+}
+
 void bad_input_tests(void)
 {
     RUN_GROUP(bi_table);
+    RUN_GROUP(bi_order);
 }
