@@ -4778,10 +4778,88 @@ static void hrm__source_of(const hrm__pt *pt, int ch, hrm_real *S)
     *S = pt->J > 0 ? pt->gq[ch] / pt->J : 0;
 }
 
+/* Gauss-Kronrod's checks of an interval [mid - hl, mid + hl] beyond
+   |K - G|, channel ch, from its nodes pt (f: their values Tr S dt/dp as
+   the rule weighs them). */
+
+/* An interval whose end was sampled (an end of the ray, or the centre of
+   the interval it was split from) sees the sample there: S at the end
+   against its linear extrapolation from the two nearest nodes; a mismatch
+   over the unsampled stretch (a thin layer at the camera or at the
+   surface, a shadow's edge between the end and the first node) counts as
+   error. */
+static hrm_real hrm__gk_ends_miss(const hrm__ctx *c, const hrm__gk_pair *R, const hrm__pt *pt,
+                                  const hrm_real *f, hrm_real hl, const hrm_real *Sa, const hrm_real *Sb,
+                                  int ch)
+{
+    hrm_real eend = 0;
+    int e, N = R->n;
+    for (e = 0; e < 2; ++e) {
+        int j0 = e ? N - 1 : 0, j1 = e ? N - 2 : 1;
+        hrm_real xe = e ? 1 : -1, s0, s1, se, gap, att, r, pred;
+        if (!(e ? Sb : Sa)) continue;
+        s0 = pt[j0].J > 0 ? pt[j0].gq[ch] / pt[j0].J : 0;
+        s1 = pt[j1].J > 0 ? pt[j1].gq[ch] / pt[j1].J : 0;
+        se = (e ? Sb : Sa)[ch];
+        gap = HRM_FABS(xe - R->x[j0]) * HRM_FABS(hl);
+        /* weighed by the attenuation at the nearest node, as that node's
+           own value is (absolute in closed form, relative to the
+           interval's start when coupled) */
+        att = pt[j0].gq[ch] != 0 ? f[j0] / pt[j0].gq[ch] : c->closed ? pt[j0].tr[ch] : 1;
+        r = (xe - R->x[j0]) / (R->x[j0] - R->x[j1]);
+        /* fitted to the source's decay too: extrapolated as an
+           exponential, which the fit integrates exactly */
+        pred = c->expo == 2 && s0 > 0 && s1 > 0 ? s0 * HRM_EXP(HRM_LOG(s0 / s1) * r) : s0 + (s0 - s1) * r;
+        eend += HRM_FABS(se - pred) * pt[j0].J * gap * att;
+    }
+    return eend;
+}
+
+/* Tr unresolved before the first node: past an optical depth of 1
+   between a and that node, the light of the stretch between them (a
+   thick medium's, all of it) is in no node, and K and G agree on
+   whatever the nodes see, 0 where Tr underflowed at all of them (L = 0
+   with HRM_OK at sigma_t T = 1e6). Its integral of Tr, at the first
+   node's source, is the error (ta: tau at a). */
+static hrm_real hrm__gk_deep_start(const hrm__ctx *c, const hrm__gk_pair *R, const hrm__pt *pt,
+                                   const hrm_real *f, hrm_real hl, const hrm_real *Sa, hrm_real ta, int ch)
+{
+    hrm_real tx = c->coupled ? -HRM_LOG(pt[0].gq[ch] != 0 && f[0] > 0 ? f[0] / pt[0].gq[ch] : HRM__TINY)
+                             : pt[0].tau[ch];
+    hrm_real dt0 = tx - ta, src = HRM_FABS(pt[0].gq[ch]);
+    if (Sa && HRM_FABS(Sa[ch]) * pt[0].J > src) src = HRM_FABS(Sa[ch]) * pt[0].J;
+    return dt0 > 1 ? src * HRM_EXP(-ta) * (R->x[0] + 1) * HRM_FABS(hl) * -HRM_EXPM1(-dt0) / dt0 : 0;
+}
+
+/* A sample of the interval this one was split from, inside it (io->xc,
+   io->gqc; lw: the nodes' Lagrange weights there): the nodes' interpolant
+   there against the sample, over a node's share of the interval. Smooth,
+   it misses by less than |K - G| (by h / l of it); a peak that the
+   parent's node sat on and these nodes straddle misses by the peak: then
+   K itself is in doubt, and the halves check it again. */
+static hrm_real hrm__gk_check_miss(const hrm__ctx *c, const hrm__gk_pair *R, const hrm__pt *pt,
+                                   const hrm_real *f, hrm_real hl, const hrm_real *lw, const hrm__gk_io *io,
+                                   int ch)
+{
+    hrm_real p_at = 0, lp = 0, att;
+    int j, jn = 0, pos = c->expo == 2, N = R->n;
+    for (j = 0; j < N; ++j) {
+        p_at += lw[j] * pt[j].gq[ch];
+        if (pos && pt[j].gq[ch] > 0) lp += lw[j] * HRM_LOG(pt[j].gq[ch]);
+        else pos = 0;
+        if (HRM_FABS(pt[j].p - io->xc) < HRM_FABS(pt[jn].p - io->xc)) jn = j;
+    }
+    /* fitted to the source's decay too: its logarithm interpolated */
+    if (pos) p_at = HRM_EXP(lp);
+    att = pt[jn].gq[ch] != 0 ? f[jn] / pt[jn].gq[ch] : c->closed ? pt[jn].tr[ch] : 1;
+    return HRM_FABS(io->gqc[ch] - p_at) * att * 2 * HRM_FABS(hl) / (hrm_real)N;
+}
+
 /* The Kronrod rule (c->gk) over [a, b] of y = (tau, L) given tau at a
    (tau_a; ignored when Tr at the nodes is known). K receives the
    increments; ek |K - G| (Munoz's estimate, G's error), at least 50
-   epsilons of the integral of |f| (QUADPACK's floor of round-off). The
+   epsilons of the integral of |f| (QUADPACK's floor of round-off), plus
+   what the checks above and the medium check (hrm__medium_miss) find. The
    callers turn it into an estimate of K's (hrm__wf_split). */
 static void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, const hrm_real *tau_a,
                     hrm_real *K, hrm_real *ek, hrm__gk_io *io)
@@ -4882,72 +4960,14 @@ static void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, const hrm_real *tau_a,
             ek[n] = HRM_FABS(eK[ch] - eG[ch]) + (uK[ch] > uG[ch] ? uK[ch] : uG[ch]);
         }
         eend = 0;
-        if (!is_tau) {
-            /* An interval whose end was sampled (an end of the ray, or
-               the centre of the interval it was split from) sees the
-               sample there: S at the end against its linear extrapolation
-               from the two nearest nodes; a mismatch over the unsampled
-               stretch (a thin layer at the camera or at the surface, a
-               shadow's edge between the end and the first node) counts
-               as error. */
-            int e;
-            for (e = 0; e < 2; ++e) {
-                int j0 = e ? N - 1 : 0, j1 = e ? N - 2 : 1;
-                hrm_real xe = e ? 1 : -1, s0, s1, se, gap, att, r, pred;
-                if (!(e ? Sb : Sa)) continue;
-                s0 = pt[j0].J > 0 ? pt[j0].gq[ch] / pt[j0].J : 0;
-                s1 = pt[j1].J > 0 ? pt[j1].gq[ch] / pt[j1].J : 0;
-                se = (e ? Sb : Sa)[ch];
-                gap = HRM_FABS(xe - R->x[j0]) * HRM_FABS(hl);
-                /* weighed by the attenuation at the nearest node, as
-                   that node's own value is (absolute in closed form,
-                   relative to the interval's start when coupled) */
-                att = pt[j0].gq[ch] != 0 ? f[j0] / pt[j0].gq[ch]
-                    : c->closed ? pt[j0].tr[ch] : 1;
-                r = (xe - R->x[j0]) / (R->x[j0] - R->x[j1]);
-                /* fitted to the source's decay too: extrapolated as an
-                   exponential, which the fit integrates exactly */
-                pred = c->expo == 2 && s0 > 0 && s1 > 0 ? s0 * HRM_EXP(HRM_LOG(s0 / s1) * r)
-                                                        : s0 + (s0 - s1) * r;
-                eend += HRM_FABS(se - pred) * pt[j0].J * gap * att;
-            }
-        }
-        if (!is_tau && ta_known && (!c->expo || c->warp != HRM_WARP_NONE)) {
-            /* Tr unresolved before the first node: past an optical depth of
-               1 between a and that node, the light of the stretch between
-               them (a thick medium's, all of it) is in no node, and K and G
-               agree on whatever the nodes see, 0 where Tr underflowed at
-               all of them (L = 0 with HRM_OK at sigma_t T = 1e6). Its
-               integral of Tr, at the first node's source, is the error. */
-            hrm_real tx = c->coupled ? -HRM_LOG(pt[0].gq[ch] != 0 && f[0] > 0 ? f[0] / pt[0].gq[ch] : HRM__TINY)
-                                     : pt[0].tau[ch];
-            hrm_real dt0 = tx - ta_at[ch], src = HRM_FABS(pt[0].gq[ch]);
-            if (Sa && HRM_FABS(Sa[ch]) * pt[0].J > src) src = HRM_FABS(Sa[ch]) * pt[0].J;
-            if (dt0 > 1)
-                eend += src * HRM_EXP(-ta_at[ch]) * (R->x[0] + 1) * HRM_FABS(hl) * -HRM_EXPM1(-dt0) / dt0;
-        }
+        if (!is_tau) eend = hrm__gk_ends_miss(c, R, pt, f, hl, Sa, Sb, ch);
+        if (!is_tau && ta_known && (!c->expo || c->warp != HRM_WARP_NONE))
+            eend += hrm__gk_deep_start(c, R, pt, f, hl, Sa, ta_at[ch], ch);
         rabs *= HRM_FABS(hl);
         if (ek[n] < 50 * HRM__EPS * rabs) ek[n] = 50 * HRM__EPS * rabs;
         ek[n] += eend;
         if (chk && !is_tau) {
-            /* A sample of the interval this one was split from, inside
-               it: the nodes' interpolant there against the sample, over
-               a node's share of the interval. Smooth, it misses by less
-               than |K - G| (by h / l of it); a peak that the parent's
-               node sat on and these nodes straddle misses by the peak:
-               then K itself is in doubt, and the halves check it again. */
-            hrm_real p_at = 0, lp = 0, mis, att;
-            int jn = 0, pos = c->expo == 2;
-            for (j = 0; j < N; ++j) {
-                p_at += lw[j] * pt[j].gq[ch];
-                if (pos && pt[j].gq[ch] > 0) lp += lw[j] * HRM_LOG(pt[j].gq[ch]);
-                else pos = 0;
-                if (HRM_FABS(pt[j].p - io->xc) < HRM_FABS(pt[jn].p - io->xc)) jn = j;
-            }
-            /* fitted to the source's decay too: its logarithm interpolated */
-            if (pos) p_at = HRM_EXP(lp);
-            att = pt[jn].gq[ch] != 0 ? f[jn] / pt[jn].gq[ch] : c->closed ? pt[jn].tr[ch] : 1;
-            mis = HRM_FABS(io->gqc[ch] - p_at) * att * 2 * HRM_FABS(hl) / (hrm_real)N;
+            hrm_real mis = hrm__gk_check_miss(c, R, pt, f, hl, lw, io, ch);
             if (mis > ek[n]) {
                 /* Missed by more than a thousandth of K, the nodes do not
                    resolve the integrand there: the whole of K is in doubt
