@@ -5123,6 +5123,7 @@ typedef struct hrm__iv {
     hrm__gk_io io; /* Gauss-Kronrod: ends, check sample, centre */
     char fell[HRM__NY]; /* nested Simpson: |S2 - S1| fell 8 times at its split */
     int rough; /* splits in a row at which it kept 30% of its parent's estimate */
+    hrm_real score; /* its estimates over their shares (hrm__wf_sum) */
 } hrm__iv;
 
 typedef struct hrm__wf {
@@ -5328,13 +5329,13 @@ static void hrm__wf_split(hrm__ctx *c, hrm__wf *w, int k)
    round-off does not decide). Returns 1 when the tolerance is met. The weighted
    tau estimates add up to at most rtol min(tau, 1): L's relative error
    from tau is at most their sum where its light comes from. */
-static int hrm__wf_sum(hrm__ctx *c, const hrm__wf *w, hrm_real acc[HRM__NY], int *pick)
+static int hrm__wf_sum(hrm__ctx *c, hrm__wf *w, hrm_real acc[HRM__NY], int *pick)
 {
     hrm_real tau[HRM__CH], L[HRM__CH], EL[HRM__CH], Et[HRM__CH], tolL[HRM__CH], tolt[HRM__CH];
     hrm_real worst = -1;
     int i, ch, pass, done = 1;
     *pick = -1;
-    for (pass = 0; pass < 3; ++pass) {
+    for (pass = 0; pass < 2; ++pass) {
         hrm__fill(tau, HRM__CH, 0);
         if (pass == 0) {
             hrm__fill(L, HRM__CH, 0);
@@ -5342,7 +5343,7 @@ static int hrm__wf_sum(hrm__ctx *c, const hrm__wf *w, hrm_real acc[HRM__NY], int
             hrm__fill(Et, HRM__CH, 0);
         }
         for (i = 0; i < w->n; ++i) {
-            const hrm__iv *v = &w->iv[i];
+            hrm__iv *v = &w->iv[i];
             hrm_real score = 0;
             for (ch = 0; ch < HRM__CH; ++ch) {
                 hrm_real f = c->closed ? 1 : HRM_EXP(-tau[ch]);
@@ -5359,10 +5360,9 @@ static int hrm__wf_sum(hrm__ctx *c, const hrm__wf *w, hrm_real acc[HRM__NY], int
                 score = score > eL ? score : eL;
                 score = score > et ? score : et;
             }
-            if (pass == 1 && score > worst) worst = score;
-            if (pass == 2 && score >= worst * (1 - HRM__R(1e-6))) {
-                *pick = i;
-                break;
+            if (pass == 1) {
+                v->score = score;
+                if (score > worst) worst = score;
             }
         }
         if (pass > 0) continue;
@@ -5380,6 +5380,12 @@ static int hrm__wf_sum(hrm__ctx *c, const hrm__wf *w, hrm_real acc[HRM__NY], int
         }
         if (done) return 1;
     }
+    /* the first interval within a millionth of the worst score */
+    for (i = 0; i < w->n; ++i)
+        if (w->iv[i].score >= worst * (1 - HRM__R(1e-6))) {
+            *pick = i;
+            break;
+        }
     return 0;
 }
 
