@@ -197,6 +197,8 @@
      h_max > 0 with h_min > h_max  HRM_ERR_BAD_OPTION, before
      max_evals < 0, or below one step of the method on every piece
      (adaptive)                    HRM_ERR_BAD_OPTION, before
+     workspace below hrm_workspace_size or not aligned to 16; NULL with
+     a workspace_size              HRM_ERR_BAD_OPTION, before
      rtol denormal                 raised to 100 eps: HRM_WARN_RTOL_CLIPPED
                                    (adaptive; fixed-step ignore rtol)
      tau_tol, tr_tol denormal      raised to 64 eps, silently
@@ -265,13 +267,16 @@
    are thread-safe and re-entrant: an Li callback may call hrm_transmittance
    (or hrm_solve) for its shadow ray. Randomness (Monte Carlo, jitter) comes
    from options.seed alone: the same inputs give the same answer.
-   Stack (tests/stack.c; the worst over every variant, double, 3 channels,
-   gcc and clang -O2; a solve holds only the storage it uses): fixed-step
-   methods 7-11 KiB on constants, 33 at most (the transmittance layer, 18);
-   the pairs 14 and 40; Gauss-Kronrod 92, nested Simpson 120 (their
-   intervals); the shadow-ray estimator 8. About 2.2 times that with 8
-   channels, half in float, at most (48 + 48 HRM_CHANNELS) KiB in double;
-   twice with a shadow ray solved inside Li.
+   Stack (tests/stack.c, worst over every variant, double, 3 channels, gcc
+   and clang -O2): fixed-step methods 7-11 KiB on constants, 33 at most
+   (the transmittance layer: 18); the pairs 14 and 40; Gauss-Kronrod 92,
+   nested Simpson 120; the shadow-ray estimator 8; about 2.2 times that with
+   8 channels, half in float, at most (48 + 48 HRM_CHANNELS) KiB; twice
+   with a shadow ray solved inside Li. options.workspace (the caller's
+   hrm_workspace_size bytes, aligned to 16: per thread, or per GPU thread)
+   holds the layer and the adaptive storage instead: every method at most
+   21 KiB of stack, 38 with a shadow ray in the workspace's rest; the
+   answers the same, bit for bit.
 
    ==========================================================================
    ARCHITECTURE
@@ -284,9 +289,8 @@
    the driver of the method's family in the method table: fixed-step,
    worst-first quadrature, local Gauss-Kronrod, Runge-Kutta pairs; solved
    again where a jump or a missed medium sample was found), hrm__finish
-   (Tr, the bound on L, the status). Every abscissa goes through
-   hrm__eval: the warp's map, the memo, the medium and Tr there, then Le
-   and Li, the source times dt/du.
+   (Tr, the bound on L, the status). Every abscissa goes through hrm__eval:
+   the warp's map, the memo, the medium and Tr, Le and Li, times dt/du.
 
    ==========================================================================
    ACCURACY AND COST   (N = options.steps; evaluations = source samples)
@@ -410,17 +414,16 @@
    ==========================================================================
    In a thick medium Tr S falls by exp(-sigma_t h) over a step. With 1,
    Simpson, Gauss-Kronrod and the pairs (optical-depth form; tau from a
-   closed form, the callback or the layer) factor
-   the exponential of tau (its least slope between nodes) out of Tr S and
-   integrate the rule's interpolant of the rest against it exactly
+   closed form, the callback or the layer) factor the exponential of tau
+   (its least slope between nodes) out of Tr S and integrate the rule's
+   interpolant of the rest against it exactly
    (Legendre moments of exp(-b (y + 1))). With 2, where the source falls
    faster than Tr, the slope of -ln(Tr S) instead (a light seen through
    the medium). Without a warp: 1 is exact for a homogeneous medium and a
    source polynomial of the rule's degree, 2 for a source C exp(-mu t),
-   at any step count and depth; L >= 0 always. As sigma_t -> 0 it is the
-   plain rule. Other methods, the RTE form, coupled tau and the stream:
-   HRM_ERR_BAD_OPTION. For optically thick media and clouds; 2 where Li
-   itself is attenuated along the ray.
+   at any step count and depth; L >= 0 always; sigma_t -> 0 gives the plain
+   rule. Other methods, the RTE form, coupled tau, the stream:
+   HRM_ERR_BAD_OPTION. For thick media and clouds (2: Li attenuated too).
 
    ==========================================================================
    TRANSMITTANCE (options.tau_mode, options.tau_tol)
@@ -456,10 +459,9 @@
    the error of a run of panels being the larger of |sum e| and
    2 sqrt(sum e^2). It starts with 4 panels (17 lookups), none wider than
    medium.feature where given. cutoff > 0: segments left to right, ending
-   once every channel's Tr is below it (that Tr returned, stats.t_cut where).
-   bench/results/shadow.md: at most 0.1% of rays beyond tr_tol at tr_tol
-   >= 1e-3, 1.8% at 1e-4 and 1e-5. A named method integrates as hrm_solve
-   (options.warp only ends an infinite ray).
+   once every channel's Tr is below it (that Tr returned, stats.t_cut where;
+   bench/results/shadow.md measures it). A named method integrates as
+   hrm_solve (options.warp only ends an infinite ray).
 
    ==========================================================================
    NOT DONE BY hrm: tracing rays, sampling lights, phase functions (Li is
@@ -475,6 +477,7 @@
 #define HRM_VERSION_MINOR 1
 #define HRM_VERSION_PATCH 0
 
+#include <stddef.h>
 #include <stdint.h>
 
 #ifndef HRM_REAL
@@ -765,6 +768,15 @@ typedef struct hrm_options {
                            result.error (sigma callbacks: no cut).
                            stats.t_cut says where. 0: none. Typical: 1e-3
                            to 1e-4. Within [0, 1] */
+
+    /* The solve's deep storage (the transmittance layer, the adaptive
+       methods' intervals, samples and finish) in memory the caller owns
+       instead of on the stack (THREAD SAFETY AND MEMORY): at least
+       hrm_workspace_size(options) bytes, aligned to 16. NULL / 0: the
+       stack. hrm only uses it during the call; a shadow ray solved inside
+       Li may use what lies past that size. */
+    void *workspace;
+    size_t workspace_size;
 } hrm_options;
 
 typedef struct hrm_stats {
@@ -798,6 +810,12 @@ typedef struct hrm_result {
 /* The defaults of `method`: what an all-zero hrm_options means, with the
    method set. */
 HRM_API hrm_options hrm_default_options(hrm_method method);
+
+/* The bytes options.workspace must hold for a solve with these options
+   (options NULL: the defaults'; 0 for options hrm_solve would reject): the
+   transmittance layer, and the adaptive methods' memo, fits, intervals,
+   samples and finish. A multiple of 16. */
+HRM_API size_t hrm_workspace_size(const hrm_options *options);
 
 /* Solve along one ray from t0 to t1 (t0 <= t1, both finite).
    medium, result: required.  options: NULL means all defaults.
@@ -1436,6 +1454,9 @@ typedef struct hrm__ctx {
                                   the round-off floor alone */
     const struct hrm__gk_pair *gk; /* Gauss-Kronrod: the pair */
     hrm__memo *memo;       /* HRM__MEMO + 1 entries (adaptive methods) */
+    struct hrm__iv *ws_iv; /* the caller's workspace: the worst-first */
+    struct hrm__pt *ws_pool; /* intervals, nested Simpson's samples and */
+    struct hrm__ns_iv *ws_stack; /* its finish's stack (else NULL: the stack) */
     int unresolved;        /* a warp's distinct nodes at one abscissa */
     int use_le, use_li;    /* source terms present */
     int per_length;        /* HRM_EMISSION_PER_LENGTH */
@@ -4678,10 +4699,10 @@ static void hrm__with_miss(hrm_real *E, const hrm_real *M)
 /* Nested Simpson left to right from one interval: tau at an interval's
    left end (acc) is final when it is judged, and its nodes' tau come from
    its own sigma_t samples as in hrm__simpson. */
-static HRM__NOINLINE void hrm__ns_local(hrm__ctx *c, const hrm__pt *a, const hrm__pt *m, const hrm__pt *b,
-                          hrm_real acc[HRM__NY])
+static void hrm__ns_local_run(hrm__ctx *c, const hrm__pt *a, const hrm__pt *m, const hrm__pt *b,
+                              hrm_real acc[HRM__NY], hrm__ns_iv *stack)
 {
-    hrm__ns_iv stack[HRM_MAX_DEPTH + 1], cur;
+    hrm__ns_iv cur;
     hrm_real val[HRM__NY], err[HRM__NY], miss[HRM__CH];
     int top = 0, i;
 
@@ -4744,6 +4765,22 @@ static HRM__NOINLINE void hrm__ns_local(hrm__ctx *c, const hrm__pt *a, const hrm
             cur = stack[--top];
         }
     }
+}
+
+/* Its stack of HRM_MAX_DEPTH + 1 intervals on the stack, in a frame of
+   its own. */
+static HRM__NOINLINE void hrm__ns_local_on_stack(hrm__ctx *c, const hrm__pt *a, const hrm__pt *m,
+                                                 const hrm__pt *b, hrm_real acc[HRM__NY])
+{
+    hrm__ns_iv stack[HRM_MAX_DEPTH + 1];
+    hrm__ns_local_run(c, a, m, b, acc, stack);
+}
+
+static void hrm__ns_local(hrm__ctx *c, const hrm__pt *a, const hrm__pt *m, const hrm__pt *b,
+                          hrm_real acc[HRM__NY])
+{
+    if (c->ws_stack) hrm__ns_local_run(c, a, m, b, acc, c->ws_stack);
+    else hrm__ns_local_on_stack(c, a, m, b, acc);
 }
 
 /* What a Gauss-Kronrod interval knows of its surroundings and returns
@@ -5448,9 +5485,8 @@ static void hrm__finish_scale(hrm__ctx *c, const hrm_real *tot, hrm_real acc[HRM
 
 /* Gauss-Kronrod, global mode: worst first from n0 intervals while they fit
    in HRM_GK_INTERVALS, then each is finished left to right. */
-static HRM__NOINLINE void hrm__gk_global(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
+static void hrm__gk_global_run(hrm__ctx *c, int n0, hrm_real acc[HRM__NY], hrm__iv *iv)
 {
-    hrm__iv iv[HRM_GK_INTERVALS];
     hrm__wf w;
     hrm_real span = c->pb - c->pa, S[2][HRM__CH], tot[HRM__NY];
     int i, has[2];
@@ -5484,14 +5520,25 @@ static HRM__NOINLINE void hrm__gk_global(hrm__ctx *c, int n0, hrm_real acc[HRM__
                           iv[i].io.hb ? iv[i].io.Sb : 0, acc);
 }
 
+/* Its intervals on the stack, in a frame of its own. */
+static HRM__NOINLINE void hrm__gk_on_stack(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
+{
+    hrm__iv iv[HRM_GK_INTERVALS];
+    hrm__gk_global_run(c, n0, acc, iv);
+}
+
+static void hrm__gk_global(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
+{
+    if (c->ws_iv) hrm__gk_global_run(c, n0, acc, c->ws_iv);
+    else hrm__gk_on_stack(c, n0, acc);
+}
+
 /* Nested Simpson: worst first from the initial panels while the intervals
    fit in HRM_NS_INTERVALS, then each interval whose estimate exceeds its
    share of the tolerance (hrm__ratio, at the scale of the total found) is
    finished left to right from its two halves. */
-static HRM__NOINLINE void hrm__nested_simpson(hrm__ctx *c, int panels, hrm_real acc[HRM__NY])
+static void hrm__ns_run(hrm__ctx *c, int panels, hrm_real acc[HRM__NY], hrm__iv *iv, hrm__pt *pool)
 {
-    hrm__iv iv[HRM_NS_INTERVALS];
-    hrm__pt pool[4 * HRM_NS_INTERVALS + 1];
     hrm__wf w;
     hrm_real span = c->pb - c->pa, tot[HRM__NY];
     int k, i;
@@ -5540,6 +5587,20 @@ static HRM__NOINLINE void hrm__nested_simpson(hrm__ctx *c, int panels, hrm_real 
             hrm__ns_local(c, &P[v->s[2]], &P[v->s[3]], &P[b], acc);
         }
     }
+}
+
+/* Its storage on the stack, in a frame of its own. */
+static HRM__NOINLINE void hrm__ns_on_stack(hrm__ctx *c, int panels, hrm_real acc[HRM__NY])
+{
+    hrm__iv iv[HRM_NS_INTERVALS];
+    hrm__pt pool[4 * HRM_NS_INTERVALS + 1];
+    hrm__ns_run(c, panels, acc, iv, pool);
+}
+
+static void hrm__nested_simpson(hrm__ctx *c, int panels, hrm_real acc[HRM__NY])
+{
+    if (c->ws_iv) hrm__ns_run(c, panels, acc, c->ws_iv, c->ws_pool);
+    else hrm__ns_on_stack(c, panels, acc);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -5591,6 +5652,35 @@ HRM__DEF hrm_options hrm_default_options(hrm_method method)
 }
 
 /* Resolve zeros to defaults; validate. */
+/* The workspace: each block rounded up to 16 bytes (the alignment the
+   caller's memory has). */
+static size_t hrm__ws_round(size_t n) { return (n + 15) / 16 * 16; }
+
+static void *hrm__ws_take(unsigned char **ws, size_t n)
+{
+    void *at = *ws;
+    *ws += hrm__ws_round(n);
+    return at;
+}
+
+/* What hrm_workspace_size says for resolved options o: the layer (which
+   sigma callbacks may need with any method), the adaptive methods' memo,
+   the fits' tables where a fit may run, and nested Simpson's or global
+   Gauss-Kronrod's intervals, samples and finish. */
+static size_t hrm__ws_bytes(const hrm_options *o)
+{
+    size_t n = hrm__ws_round(sizeof(hrm__tau));
+    if (hrm__is_adaptive(o->method)) n += hrm__ws_round(sizeof(hrm__memo) * (HRM__MEMO + 1));
+    if (o->exponential) n += hrm__ws_round(sizeof(hrm__efit) * 2);
+    if (o->method == HRM_NESTED_SIMPSON)
+        n += hrm__ws_round(sizeof(hrm__iv) * HRM_NS_INTERVALS) +
+             hrm__ws_round(sizeof(hrm__pt) * (4 * HRM_NS_INTERVALS + 1)) +
+             hrm__ws_round(sizeof(hrm__ns_iv) * (HRM_MAX_DEPTH + 1));
+    if (o->method == HRM_GAUSS_KRONROD && o->gk_mode == HRM_GK_GLOBAL)
+        n += hrm__ws_round(sizeof(hrm__iv) * HRM_GK_INTERVALS);
+    return n;
+}
+
 /* The least evaluations one piece of the ray costs the method (its first
    step, or its initial panels or intervals). */
 static long hrm__piece_cost(const hrm_options *o)
@@ -5680,6 +5770,10 @@ static hrm_status hrm__resolve(const hrm_options *in, hrm_options *o, int tau_in
        honoured (a breakpoint count out of range is the breakpoints' error). */
     if (o->nbreaks < 0 || o->nbreaks > HRM_MAX_BREAKS) return HRM_ERR_BAD_BREAKS;
     if (o->max_evals < hrm__piece_cost(o) * ((long)(o->nbreaks > 0 ? o->nbreaks : 0) + 1))
+        return HRM_ERR_BAD_OPTION;
+    /* the workspace: with its size, at least what the solve takes, on 16 */
+    if (o->workspace ? o->workspace_size < hrm__ws_bytes(o) || (uintptr_t)o->workspace % 16 != 0
+                     : o->workspace_size != 0)
         return HRM_ERR_BAD_OPTION;
     return HRM_OK;
 }
@@ -6599,6 +6693,7 @@ typedef struct hrm__job {
     hrm__tau *layer;
     hrm__memo *memo;
     hrm__efit *ef;
+    unsigned char *ws;     /* the caller's workspace, what is left of it */
 } hrm__job;
 
 #define HRM__NEED_LAYER 1u /* the transmittance layer (18 KiB at 3 channels) */
@@ -6666,6 +6761,13 @@ static HRM__NOINLINE hrm_status hrm__solve_job(hrm__job *j)
     int k;
 
     memset(&c, 0, sizeof c);
+    if (j->ws && o->method == HRM_NESTED_SIMPSON) {
+        c.ws_iv = (hrm__iv *)hrm__ws_take(&j->ws, sizeof(hrm__iv) * HRM_NS_INTERVALS);
+        c.ws_pool = (hrm__pt *)hrm__ws_take(&j->ws, sizeof(hrm__pt) * (4 * HRM_NS_INTERVALS + 1));
+        c.ws_stack = (hrm__ns_iv *)hrm__ws_take(&j->ws, sizeof(hrm__ns_iv) * (HRM_MAX_DEPTH + 1));
+    } else if (j->ws && o->method == HRM_GAUSS_KRONROD && o->gk_mode == HRM_GK_GLOBAL) {
+        c.ws_iv = (hrm__iv *)hrm__ws_take(&j->ws, sizeof(hrm__iv) * HRM_GK_INTERVALS);
+    }
     st = hrm__setup(&c, j->layer, j->memo, j->ef, m, j->t0, t1, o, j->tr_only);
     *j->stats = c.stats;
     if (st != HRM_OK) return st;
@@ -6703,6 +6805,14 @@ static HRM__NOINLINE hrm_status hrm__solve_job(hrm__job *j)
 
 static hrm_status hrm__stage(hrm__job *j)
 {
+    if (j->ws && j->need) {
+        /* all of it from the caller's workspace */
+        if (j->need & HRM__NEED_LAYER) j->layer = (hrm__tau *)hrm__ws_take(&j->ws, sizeof(hrm__tau));
+        if (j->need & HRM__NEED_MEMO)
+            j->memo = (hrm__memo *)hrm__ws_take(&j->ws, sizeof(hrm__memo) * (HRM__MEMO + 1));
+        if (j->need & HRM__NEED_EFIT) j->ef = (hrm__efit *)hrm__ws_take(&j->ws, sizeof(hrm__efit) * 2);
+        j->need = 0;
+    }
     if (j->need & HRM__NEED_LAYER) return hrm__with_layer(j);
     if (j->need & HRM__NEED_MEMO) return hrm__with_memo(j);
     if (j->need & HRM__NEED_EFIT) return hrm__with_efit(j);
@@ -6742,6 +6852,7 @@ static hrm_status hrm__run(const hrm_medium *m, hrm_real t0, hrm_real t1,
     j.njumps = njumps;
     j.jumps = jumps;
     j.need = hrm__needs(m, &j.o, in, tr_only, t1);
+    j.ws = (unsigned char *)j.o.workspace;
     return hrm__stage(&j);
 }
 
@@ -6784,6 +6895,19 @@ static long hrm__cut_point(const hrm_medium *m, hrm_real t0, hrm_real t1, hrm_re
     }
     *t_cut = hi;
     return calls;
+}
+
+HRM__DEF size_t hrm_workspace_size(const hrm_options *options)
+{
+    hrm_options o;
+    hrm_options probe;
+    if (options) {
+        probe = *options;
+        probe.workspace = NULL; /* its own size is what is asked */
+        probe.workspace_size = 0;
+        options = &probe;
+    }
+    return hrm__resolve(options, &o, 0) == HRM_OK ? hrm__ws_bytes(&o) : (size_t)0;
 }
 
 HRM__DEF hrm_status hrm_solve(const hrm_medium *medium, hrm_real t0, hrm_real t1,

@@ -52,6 +52,7 @@
 
 #include <math.h>
 #include <pthread.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -192,6 +193,8 @@ typedef struct st_case {
     int variant;             /* ST_V_* */
     int shadow;              /* 1: Li nests hrm_solve, 2: hrm_transmittance,
                                 of the same case without a shadow */
+    unsigned char *ws;       /* options.workspace (the shadow ray's: the
+                                rest past the outer solve's share), or 0 */
 } st_case;
 
 /* The IVP methods, whose form matters (the quadratures ignore it). */
@@ -302,6 +305,14 @@ static hrm_status st_run(const st_case *k)
         s.shadow = k->shadow;
         s.inner = &mi;
         s.inner_opt = &oi;
+    }
+    if (k->ws) {
+        o.workspace = k->ws;
+        o.workspace_size = hrm_workspace_size(&o);
+        if (k->shadow) {
+            oi.workspace = k->ws + o.workspace_size;
+            oi.workspace_size = hrm_workspace_size(&oi);
+        }
     }
     if (k->tr_only) return hrm_transmittance(&m, 0, t1, &o, r.Tr, 0);
     return hrm_solve(&m, 0, t1, &o, &r);
@@ -661,6 +672,60 @@ static void st_table(void)
               "%s with a nested shadow ray: %ld and %ld bytes, within twice STACK_LIMIT",
               hrm_method_name((hrm_method)m), both[0], both[1]);
         CHECK(both[0] < ST_STACK - ST_MARGIN, "the measure kept %ld bytes of its stack unused", ST_MARGIN);
+    }
+
+    /* With options.workspace (malloc'ed: not on the painted stack), every
+       case again: the deep storage leaves the stack. */
+    {
+        st_worst wrow[ST_ROWS];
+        unsigned char *ws = (unsigned char *)malloc(4u << 20);
+        long wlargest = 0;
+        CHECK(ws != 0 && (uintptr_t)ws % 16 == 0, "a workspace, aligned to 16");
+        if (!ws) {
+            free(mem);
+            return;
+        }
+        for (r = 0; r < ST_ROWS; ++r) {
+            wrow[r].bytes = 0;
+            wrow[r].at = -1;
+            wrow[r].cases = 0;
+        }
+        for (i = 0; i < n; ++i) {
+            st_job j;
+            cases[i].ws = ws;
+            memset(&j, 0, sizeof j);
+            j.k = &cases[i];
+            j.mode = ST_SOLVE;
+            u = st_used(mem, &j);
+            if (j.st == HRM_ERR_BAD_OPTION || u < 0) continue;
+            u -= base;
+            if (!cases[i].tr_only) st_keep(&wrow[cases[i].method], u, i);
+            else st_keep(&wrow[cases[i].medium == ST_MED_COUPLED ? ST_ROW_TR_COUPLED : ST_ROW_TR], u, i);
+        }
+        NOTE("with options.workspace (hrm_workspace_size bytes; a shadow ray in the rest), bytes of stack:");
+        NOTE("  %-20s %8s %8s  %s", "method", "alone", "+ shadow", "worst configuration alone");
+        for (r = 1; r <= ST_ROW_TR_COUPLED; ++r) {
+            long sh = 0;
+            if (wrow[r].at < 0) continue;
+            st_row_name(r, name);
+            st_describe(&cases[wrow[r].at], desc, sizeof desc);
+            if (r < ST_ROW_TR) {
+                st_job j;
+                nested = cases[wrow[r].at];
+                nested.shadow = 1;
+                memset(&j, 0, sizeof j);
+                j.k = &nested;
+                j.mode = ST_SOLVE;
+                sh = st_used(mem, &j) - base;
+            }
+            NOTE("  %-20s %8ld %8ld  %s", name, st_round(wrow[r].bytes), st_round(sh), desc);
+            CHECK(wrow[r].bytes <= row[r].bytes, "%s: no more stack with a workspace (%ld, %ld without)", name,
+                  wrow[r].bytes, row[r].bytes);
+            if (wrow[r].bytes > wlargest) wlargest = wrow[r].bytes;
+        }
+        NOTE("the largest with a workspace: %ld bytes", wlargest);
+        for (i = 0; i < n; ++i) cases[i].ws = 0;
+        free(ws);
     }
     free(mem);
 }

@@ -27,6 +27,8 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdint.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* The rtol values of the accuracy tests: 1e-3 ... 1e-9 in double; under
@@ -948,6 +950,172 @@ static void ad_verified(void)
     }
 }
 
+/* ========================================================================
+   options.workspace: the deep storage in the caller's memory gives every
+   method the same answer, bit for bit, as the stack: L, Tr, the error
+   estimate, the stats and the jumps, on a smooth ray, on a hard one (a
+   shadow, a light 0.05 from the ray, rtol 1e-9: nested Simpson and
+   global Gauss-Kronrod fill their storage and finish left to right), on
+   constants and sigma callbacks (the transmittance layer), without and
+   with the equiangular warp and an exponential fit; also with a shadow
+   ray solved inside Li in the rest of the same workspace. (Bad
+   workspaces: tests/test_bad_input.c.)
+   ======================================================================== */
+typedef struct ad_ws_scene {
+    int hard;
+    void *inner_ws;     /* Li's shadow ray: its workspace (or NULL) */
+    size_t inner_size;
+    int nested;         /* Li solves a shadow ray */
+} ad_ws_scene;
+
+static void ad_ws_sig(void *u, hrm_real t, hrm_real sa[NCH], hrm_real ss[NCH])
+{
+    int c;
+    (void)u;
+    for (c = 0; c < NCH; ++c) {
+        sa[c] = (hrm_real)(0.1 + 0.05 * sin(0.9 * (double)t + c));
+        ss[c] = (hrm_real)(0.4 + 0.1 * cos(0.7 * (double)t));
+    }
+}
+
+static void ad_ws_li(void *u, hrm_real t, hrm_real out[NCH])
+{
+    const ad_ws_scene *s = (const ad_ws_scene *)u;
+    double x = (double)t - 2.5, v = 1 / (x * x + (s->hard ? 0.0025 : 1.0));
+    int c;
+    if (s->hard && (double)t > 3.1 && (double)t < 3.9) v = 0; /* a shadow */
+    if (s->nested) {
+        /* a shadow ray through the same medium, in the outer workspace's
+           rest when there is one */
+        hrm_medium m;
+        hrm_options o = hrm_default_options(HRM_SIMPSON);
+        hrm_real Tr[NCH];
+        memset(&m, 0, sizeof m);
+        m.sigma = ad_ws_sig;
+        o.steps = 8;
+        o.tau_mode = HRM_TAU_DECOUPLED;
+        o.workspace = s->inner_ws;
+        o.workspace_size = s->inner_size;
+        if (hrm_transmittance(&m, t, t + 1, &o, Tr, NULL) == HRM_OK) v *= (double)Tr[0];
+        else v = -1; /* a callback error: the test sees it */
+    }
+    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)v;
+}
+
+static int ad_ws_same(const hrm_result *a, const hrm_result *b)
+{
+    int c, k, same = a->stats.evals == b->stats.evals && a->stats.medium_evals == b->stats.medium_evals &&
+                     a->stats.steps == b->stats.steps && a->stats.rejected == b->stats.rejected &&
+                     a->njumps == b->njumps;
+    for (c = 0; c < NCH; ++c)
+        same &= a->L[c] == b->L[c] && a->Tr[c] == b->Tr[c] && a->error[c] == b->error[c];
+    for (k = 0; k < a->njumps && k < HRM_MAX_JUMPS; ++k) same &= a->jumps[k] == b->jumps[k];
+    return same;
+}
+
+static void ad_workspace(void)
+{
+    unsigned char *mem = (unsigned char *)malloc(1 << 22), *ws;
+    int mi, cb, hard, w, e, nested, diff = 0, runs = 0;
+    size_t need;
+    if (!mem) {
+        CHECK(0, "workspace test: no memory");
+        return;
+    }
+    ws = mem + (16 - (size_t)((uintptr_t)mem % 16)) % 16;
+    CHECK(hrm_workspace_size(NULL) > 0 && hrm_workspace_size(NULL) % 16 == 0,
+          "hrm_workspace_size(NULL) = %lu: positive, a multiple of 16", (unsigned long)hrm_workspace_size(NULL));
+    for (mi = 0; mi < N_METHODS_ALL; ++mi)
+        for (cb = 0; cb < 2; ++cb)
+            for (hard = 0; hard < 2; ++hard)
+                for (w = 0; w < 2; ++w)
+                    for (e = 0; e < 2; ++e)
+                        for (nested = 0; nested < 2; ++nested) {
+                            ad_ws_scene sc;
+                            hrm_medium m;
+                            hrm_options o = hrm_default_options(every_method[mi]);
+                            hrm_result plain, in_ws;
+                            hrm_status s1, s2;
+                            int c;
+                            memset(&sc, 0, sizeof sc);
+                            memset(&m, 0, sizeof m);
+                            sc.hard = hard;
+                            sc.nested = nested;
+                            m.user = &sc;
+                            m.Li = ad_ws_li;
+                            if (cb) {
+                                m.sigma = ad_ws_sig;
+                            } else {
+                                m.flags = HRM_MEDIUM_HOMOGENEOUS;
+                                for (c = 0; c < NCH; ++c) {
+                                    m.const_sigma_a[c] = (hrm_real)0.1;
+                                    m.const_sigma_s[c] = (hrm_real)0.4;
+                                }
+                            }
+                            if (!is_adaptive(every_method[mi])) o.steps = 16;
+                            else o.rtol = (hrm_real)(hard ? (real_is_float() ? 1e-5 : 1e-9) : 1e-3);
+                            if (w) {
+                                o.warp.kind = HRM_WARP_EQUIANGULAR;
+                                o.warp.delta = (hrm_real)2.5;
+                                o.warp.D = (hrm_real)(hard ? 0.05 : 1);
+                            }
+                            o.exponential = e;
+                            if (hrm_solve(&m, 0, 6, &o, &plain) == HRM_ERR_BAD_OPTION) continue;
+                            s1 = hrm_solve(&m, 0, 6, &o, &plain);
+                            need = hrm_workspace_size(&o);
+                            o.workspace = ws;
+                            o.workspace_size = need;
+                            if (nested) {
+                                hrm_options io = hrm_default_options(HRM_SIMPSON);
+                                io.steps = 8;
+                                io.tau_mode = HRM_TAU_DECOUPLED;
+                                sc.inner_ws = ws + need;
+                                sc.inner_size = hrm_workspace_size(&io);
+                                o.workspace_size = need + sc.inner_size;
+                            }
+                            memset(ws, 0xA5, o.workspace_size); /* nothing read before it is written */
+                            s2 = hrm_solve(&m, 0, 6, &o, &in_ws);
+                            ++runs;
+                            if (s1 != s2 || !ad_ws_same(&plain, &in_ws)) {
+                                ++diff;
+                                CHECK(0, "%s, %s, %s, warp %d, exp %d, nested %d: the workspace changed the answer "
+                                      "(status %d/%d, L %.17g/%.17g, evals %ld/%ld)",
+                                      hrm_method_name(every_method[mi]), cb ? "sigma" : "const",
+                                      hard ? "hard" : "smooth", w, e, nested, s1, s2, (double)plain.L[0],
+                                      (double)in_ws.L[0], plain.stats.evals, in_ws.stats.evals);
+                            }
+                        }
+    CHECK(runs >= 300 && diff == 0, "workspace: %d solves identical to the stack's, %d differ", runs - diff, diff);
+    {
+        /* the workspace is used, and not one byte past its size */
+        hrm_medium m;
+        hrm_options o = hrm_default_options(HRM_NESTED_SIMPSON);
+        hrm_result r;
+        ad_ws_scene sc;
+        size_t k, used = 0, past = 0;
+        memset(&sc, 0, sizeof sc);
+        memset(&m, 0, sizeof m);
+        sc.hard = 1;
+        m.user = &sc;
+        m.sigma = ad_ws_sig;
+        m.Li = ad_ws_li;
+        o.rtol = (hrm_real)(real_is_float() ? 1e-5 : 1e-9);
+        need = hrm_workspace_size(&o);
+        CHECK(need > 0 && need % 16 == 0, "nested Simpson's workspace: %lu bytes, a multiple of 16",
+              (unsigned long)need);
+        o.workspace = ws;
+        o.workspace_size = need;
+        memset(ws, 0xA5, need + 256);
+        CHECK(hrm_solve(&m, 0, 6, &o, &r) >= 0, "a workspace of exactly its size, a hard ray: solved");
+        for (k = 0; k < need; ++k) used += ws[k] != 0xA5;
+        for (k = need; k < need + 256; ++k) past += ws[k] != 0xA5;
+        CHECK(used > need / 8, "the workspace used: %lu of %lu bytes written", (unsigned long)used,
+              (unsigned long)need);
+        CHECK(past == 0, "nothing written past the workspace's size (%lu bytes)", (unsigned long)past);
+    }
+    free(mem);
+}
+
 void adaptive_tests(void)
 {
     RUN_GROUP(ad_accuracy);
@@ -958,5 +1126,6 @@ void adaptive_tests(void)
     RUN_GROUP(ad_transmittance);
     RUN_GROUP(ad_verified);
     RUN_GROUP(ad_anytime);
+    RUN_GROUP(ad_workspace);
 }
 

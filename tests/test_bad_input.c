@@ -42,6 +42,8 @@
 
 #include <float.h>
 #include <limits.h>
+#include <stdint.h>
+#include <stdlib.h>
 #include <string.h>
 
 
@@ -1290,8 +1292,52 @@ static void bi_order(void)
         }
 }
 
+/* options.workspace out of range: one byte short of hrm_workspace_size,
+   not aligned to 16, NULL with a size: HRM_ERR_BAD_OPTION before any
+   callback, the error's result, every method, both entry points; NULL
+   with 0 (the stack) and exactly its size: valid. */
+static void bi_workspace(void)
+{
+    unsigned char *mem = (unsigned char *)malloc(1 << 21), *ws;
+    int mi, k;
+    if (!mem) {
+        CHECK(0, "workspace: no memory");
+        return;
+    }
+    ws = mem + (16 - (size_t)((uintptr_t)mem % 16)) % 16;
+    for (mi = 0; mi < N_METHODS_ALL; ++mi)
+        for (k = 0; k < 5; ++k) {
+            static const char *const what[5] = {"one byte short", "not on 16 bytes", "NULL with a size",
+                                                "none", "exactly its size"};
+            hrm_medium m;
+            hrm_options o = hrm_default_options(every_method[mi]);
+            hrm_result r;
+            hrm_real Tr[NCH];
+            hrm_stats st;
+            size_t need = hrm_workspace_size(&o);
+            hrm_status want = k < 3 ? HRM_ERR_BAD_OPTION : HRM_OK;
+            memset(&m, 0, sizeof m);
+            m.sigma = bi_order_sig;
+            m.Li = bi_order_li;
+            o.workspace = k == 3 ? NULL : k == 2 ? NULL : k == 1 ? ws + 8 : ws;
+            o.workspace_size = k == 3 ? 0 : k == 0 ? need - 1 : need;
+            CHECK(need > 0 && need % 16 == 0, "%s: hrm_workspace_size %lu, a multiple of 16",
+                  hrm_method_name(every_method[mi]), (unsigned long)need);
+            CHECK_INT(hrm_solve(&m, (hrm_real)0.5, (hrm_real)6.5, &o, &r), want, "%s, workspace %s: hrm_solve",
+                      hrm_method_name(every_method[mi]), what[k]);
+            if (k < 3)
+                CHECK(r.L[0] == 0 && r.Tr[0] == 1 && r.stats.evals == 0 && r.stats.medium_evals == 0,
+                      "%s, workspace %s: the error's result, no callback", hrm_method_name(every_method[mi]),
+                      what[k]);
+            CHECK_INT(hrm_transmittance(&m, (hrm_real)0.5, (hrm_real)6.5, &o, Tr, &st), want,
+                      "%s, workspace %s: hrm_transmittance", hrm_method_name(every_method[mi]), what[k]);
+        }
+    free(mem);
+}
+
 void bad_input_tests(void)
 {
     RUN_GROUP(bi_table);
     RUN_GROUP(bi_order);
+    RUN_GROUP(bi_workspace);
 }
