@@ -545,27 +545,27 @@ typedef enum hrm_status {
    One list: the enum, the names and the implementation's method table
    (family, default steps, order on smooth integrands, whether the RTE form
    applies, tableau, whether an exponential fit applies, the tau stream: 0
-   not, 1 on request, 2 the default under a warp) come from it, so they
-   cannot drift apart. */
+   not, 1 on request, 2 the default under a warp; the driver that runs it)
+   come from it, so they cannot drift apart. */
 #define HRM__METHOD_LIST(X)                                                   \
-    X(HRM_RECTANGLE, "rectangle", HRM__FIXED_QUAD, 32, 2, 0, 0, 0, 2)          \
-    X(HRM_SIMPSON, "simpson", HRM__FIXED_QUAD, 32, 4, 0, 0, 1, 1)              \
-    X(HRM_MONTE_CARLO, "monte-carlo", HRM__FIXED_QUAD, 32, 0.5, 0, 0, 0, 2)    \
-    X(HRM_EULER, "euler", HRM__FIXED_IVP, 32, 1, 1, &hrm__euler, 0, 2)         \
-    X(HRM_RK4, "rk4", HRM__FIXED_IVP, 32, 4, 1, &hrm__rk4, 0, 1)               \
-    X(HRM_ADAMS_BASHFORTH, "adams-bashforth", HRM__FIXED_IVP, 32, 4, 1, &hrm__rk4, 0, 1) \
-    X(HRM_NESTED_SIMPSON, "nested-simpson", HRM__ADAPTIVE_QUAD, 2, 6, 0, 0, 0, 0) \
-    X(HRM_GAUSS_KRONROD, "gauss-kronrod", HRM__ADAPTIVE_QUAD, 1, 22, 0, 0, 1, 0) \
-    X(HRM_BOGACKI_SHAMPINE, "bogacki-shampine", HRM__PAIR, 0, 3, 1, &hrm__bs, 1, 0) \
-    X(HRM_DORMAND_PRINCE, "dormand-prince", HRM__PAIR, 0, 5, 1, &hrm__dp, 1, 0) \
-    X(HRM_FEHLBERG, "fehlberg", HRM__PAIR, 0, 4, 1, &hrm__rkf, 1, 0)           \
-    X(HRM_CASH_KARP, "cash-karp", HRM__PAIR, 0, 4, 1, &hrm__ck, 1, 0)          \
-    X(HRM_VERNER, "verner", HRM__PAIR, 0, 6, 1, &hrm__vr, 1, 0)                \
-    X(HRM_ANALYTIC_MARCH, "analytic-march", HRM__FIXED_QUAD, 32, 2, 0, 0, 0, 0)
+    X(HRM_RECTANGLE, "rectangle", HRM__FIXED_QUAD, 32, 2, 0, 0, 0, 2, HRM__DRV_RECT) \
+    X(HRM_SIMPSON, "simpson", HRM__FIXED_QUAD, 32, 4, 0, 0, 1, 1, HRM__DRV_SIMPSON) \
+    X(HRM_MONTE_CARLO, "monte-carlo", HRM__FIXED_QUAD, 32, 0.5, 0, 0, 0, 2, HRM__DRV_MC) \
+    X(HRM_EULER, "euler", HRM__FIXED_IVP, 32, 1, 1, &hrm__euler, 0, 2, HRM__DRV_IVP) \
+    X(HRM_RK4, "rk4", HRM__FIXED_IVP, 32, 4, 1, &hrm__rk4, 0, 1, HRM__DRV_IVP) \
+    X(HRM_ADAMS_BASHFORTH, "adams-bashforth", HRM__FIXED_IVP, 32, 4, 1, &hrm__rk4, 0, 1, HRM__DRV_AB4) \
+    X(HRM_NESTED_SIMPSON, "nested-simpson", HRM__ADAPTIVE_QUAD, 2, 6, 0, 0, 0, 0, HRM__DRV_NS) \
+    X(HRM_GAUSS_KRONROD, "gauss-kronrod", HRM__ADAPTIVE_QUAD, 1, 22, 0, 0, 1, 0, HRM__DRV_GK) \
+    X(HRM_BOGACKI_SHAMPINE, "bogacki-shampine", HRM__PAIR, 0, 3, 1, &hrm__bs, 1, 0, HRM__DRV_PAIR) \
+    X(HRM_DORMAND_PRINCE, "dormand-prince", HRM__PAIR, 0, 5, 1, &hrm__dp, 1, 0, HRM__DRV_PAIR) \
+    X(HRM_FEHLBERG, "fehlberg", HRM__PAIR, 0, 4, 1, &hrm__rkf, 1, 0, HRM__DRV_PAIR) \
+    X(HRM_CASH_KARP, "cash-karp", HRM__PAIR, 0, 4, 1, &hrm__ck, 1, 0, HRM__DRV_PAIR) \
+    X(HRM_VERNER, "verner", HRM__PAIR, 0, 6, 1, &hrm__vr, 1, 0, HRM__DRV_PAIR) \
+    X(HRM_ANALYTIC_MARCH, "analytic-march", HRM__FIXED_QUAD, 32, 2, 0, 0, 0, 0, HRM__DRV_MARCH)
 
 typedef enum hrm_method {
     HRM_METHOD_DEFAULT = 0,
-#define HRM__METHOD_ENUM(name, text, family, steps, order, rte, tableau, fit, stream) name,
+#define HRM__METHOD_ENUM(name, text, family, steps, order, rte, tableau, fit, stream, driver) name,
     HRM__METHOD_LIST(HRM__METHOD_ENUM)
 #undef HRM__METHOD_ENUM
     HRM_METHOD_COUNT /* one past the last method */
@@ -1016,6 +1016,17 @@ HRM__STATIC_ASSERT(shadow_panels_8_to_4096, HRM_SHADOW_PANELS >= 8 && HRM_SHADOW
 #define HRM__ADAPTIVE_QUAD 2
 #define HRM__PAIR 3
 
+/* Drivers (the method table's last column): the code that runs a method. */
+#define HRM__DRV_RECT 0    /* midpoints (or one jittered offset) */
+#define HRM__DRV_SIMPSON 1
+#define HRM__DRV_MC 2      /* Monte Carlo */
+#define HRM__DRV_MARCH 3   /* the analytic march */
+#define HRM__DRV_IVP 4     /* fixed-step Runge-Kutta: Euler, RK4 */
+#define HRM__DRV_AB4 5     /* Adams-Bashforth, started by RK4 */
+#define HRM__DRV_NS 6      /* nested Simpson, worst first */
+#define HRM__DRV_GK 7      /* Gauss-Kronrod, worst first or local */
+#define HRM__DRV_PAIR 8    /* embedded Runge-Kutta pairs */
+
 #define HRM__R(x) ((hrm_real)(x))
 #define HRM__IS_FLOAT (sizeof(hrm_real) == sizeof(float))
 #define HRM__TINY (HRM__IS_FLOAT ? HRM__R(FLT_MIN) : HRM__R(DBL_MIN)) /* smallest normal */
@@ -1309,12 +1320,13 @@ typedef struct hrm__method_info {
                                   default under a warp (order 2 at most:
                                   its 16 extra samples stay below the
                                   rule's own error) */
+    int driver;                /* HRM__DRV_*: the code that runs it */
 } hrm__method_info;
 
 static const hrm__method_info hrm__methods[HRM_METHOD_COUNT] = {
-    {"default", HRM__FIXED_QUAD, 32, 4, 0, 0, 0, 0}, /* never read: resolved to HRM_NESTED_SIMPSON first */
-#define HRM__METHOD_INFO(name, text, family, steps, order, rte, tableau, fit, stream) \
-    {text, family, steps, order, rte, tableau, fit, stream},
+    {"default", HRM__FIXED_QUAD, 32, 4, 0, 0, 0, 0, 0}, /* never read: resolved to HRM_NESTED_SIMPSON first */
+#define HRM__METHOD_INFO(name, text, family, steps, order, rte, tableau, fit, stream, driver) \
+    {text, family, steps, order, rte, tableau, fit, stream, driver},
     HRM__METHOD_LIST(HRM__METHOD_INFO)
 #undef HRM__METHOD_INFO
 };
@@ -1325,6 +1337,15 @@ static int hrm__is_adaptive(hrm_method method)
 {
     int fam = hrm__methods[method].family;
     return fam == HRM__ADAPTIVE_QUAD || fam == HRM__PAIR;
+}
+
+/* The driver of resolved options o: the method's; Gauss-Kronrod's by its
+   mode (HRM__DRV_GK: worst first, global; HRM__DRV_GK_LOCAL: Munoz's). */
+#define HRM__DRV_GK_LOCAL 9
+static int hrm__driver(const hrm_options *o)
+{
+    int d = hrm__methods[o->method].driver;
+    return d == HRM__DRV_GK && o->gk_mode == HRM_GK_LOCAL ? HRM__DRV_GK_LOCAL : d;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -3965,12 +3986,12 @@ static void hrm__efit_setup(hrm__ctx *c, const hrm_options *o)
 {
     hrm_real y[HRM__EFIT_MAX];
     int j, n = 0;
-    if (o->method == HRM_SIMPSON) {
+    if (hrm__methods[o->method].driver == HRM__DRV_SIMPSON) {
         y[0] = -1;
         y[1] = 0;
         y[2] = 1;
         hrm__efit_init(&c->ef[0], y, 3);
-    } else if (o->method == HRM_GAUSS_KRONROD) {
+    } else if (hrm__methods[o->method].driver == HRM__DRV_GK) {
         const hrm__gk_pair *R = o->gk_rule == HRM_GK_K7 ? &hrm__k7 : &hrm__k15;
         hrm__efit_init(&c->ef[0], R->x, R->n);
         for (j = 0; j < R->n; ++j)
@@ -5643,11 +5664,12 @@ HRM__DEF hrm_options hrm_default_options(hrm_method method)
     /* the analytic march takes sigma_t at its samples, as renderers do;
        the other fixed-step methods are resolved with the warp (coupled
        without one: hrm__resolve), the adaptive ones decoupled */
-    o.tau_mode = o.method == HRM_ANALYTIC_MARCH ? HRM_TAU_COUPLED
-               : (int)o.method > 0 && (int)o.method < (int)HRM_METHOD_COUNT &&
-                         hrm__methods[o.method].family <= HRM__FIXED_IVP
-                   ? HRM_TAU_DEFAULT
+    if ((int)o.method > 0 && (int)o.method < (int)HRM_METHOD_COUNT) /* (an unknown one: hrm__resolve) */
+        o.tau_mode = hrm__methods[o.method].driver == HRM__DRV_MARCH ? HRM_TAU_COUPLED
+                   : hrm__methods[o.method].family <= HRM__FIXED_IVP ? HRM_TAU_DEFAULT
                    : HRM_TAU_DECOUPLED;
+    else
+        o.tau_mode = HRM_TAU_DECOUPLED;
     return o;
 }
 
@@ -5670,14 +5692,14 @@ static void *hrm__ws_take(unsigned char **ws, size_t n)
 static size_t hrm__ws_bytes(const hrm_options *o)
 {
     size_t n = hrm__ws_round(sizeof(hrm__tau));
+    int d = hrm__driver(o);
     if (hrm__is_adaptive(o->method)) n += hrm__ws_round(sizeof(hrm__memo) * (HRM__MEMO + 1));
     if (o->exponential) n += hrm__ws_round(sizeof(hrm__efit) * 2);
-    if (o->method == HRM_NESTED_SIMPSON)
+    if (d == HRM__DRV_NS)
         n += hrm__ws_round(sizeof(hrm__iv) * HRM_NS_INTERVALS) +
              hrm__ws_round(sizeof(hrm__pt) * (4 * HRM_NS_INTERVALS + 1)) +
              hrm__ws_round(sizeof(hrm__ns_iv) * (HRM_MAX_DEPTH + 1));
-    if (o->method == HRM_GAUSS_KRONROD && o->gk_mode == HRM_GK_GLOBAL)
-        n += hrm__ws_round(sizeof(hrm__iv) * HRM_GK_INTERVALS);
+    if (d == HRM__DRV_GK) n += hrm__ws_round(sizeof(hrm__iv) * HRM_GK_INTERVALS);
     return n;
 }
 
@@ -5687,8 +5709,8 @@ static long hrm__piece_cost(const hrm_options *o)
 {
     const hrm__method_info *mi = &hrm__methods[o->method];
     return mi->family == HRM__PAIR ? hrm__stage_cost(mi->tb) + 1L
-         : o->method == HRM_NESTED_SIMPSON ? 4L * o->steps + 1
-         : o->method == HRM_GAUSS_KRONROD ? (o->gk_rule == HRM_GK_K7 ? 7L : 15L) * o->steps + 2
+         : mi->driver == HRM__DRV_NS ? 4L * o->steps + 1
+         : mi->driver == HRM__DRV_GK ? (o->gk_rule == HRM_GK_K7 ? 7L : 15L) * o->steps + 2
          : 0L;
 }
 
@@ -5707,8 +5729,8 @@ static hrm_status hrm__resolve(const hrm_options *in, hrm_options *o, int tau_in
     if (o->steps < 0) return HRM_ERR_BAD_STEPS;
     if (o->steps == 0) o->steps = d.steps;
     /* initial panels and intervals of the adaptive quadratures */
-    if (o->method == HRM_NESTED_SIMPSON && o->steps > HRM_NS_PANELS) o->steps = HRM_NS_PANELS;
-    if (o->method == HRM_GAUSS_KRONROD && o->steps > HRM_GK_INITIAL) o->steps = HRM_GK_INITIAL;
+    if (mi->driver == HRM__DRV_NS && o->steps > HRM_NS_PANELS) o->steps = HRM_NS_PANELS;
+    if (mi->driver == HRM__DRV_GK && o->steps > HRM_GK_INITIAL) o->steps = HRM_GK_INITIAL;
     if ((int)o->form < 0 || (int)o->form > (int)HRM_FORM_RTE) return HRM_ERR_BAD_OPTION;
     if (o->form == HRM_FORM_DEFAULT) o->form = HRM_FORM_OPTICAL_DEPTH;
     if ((int)o->control < 0 || (int)o->control > (int)HRM_CONTROL_GONTERMAN) return HRM_ERR_BAD_OPTION;
@@ -5762,7 +5784,7 @@ static hrm_status hrm__resolve(const hrm_options *in, hrm_options *o, int tau_in
     if (o->tau_tol == 0)
         o->tau_tol = hrm__is_adaptive(o->method)
                          ? o->rtol / 8
-                         : HRM__R(0.01 * pow((double)o->steps, -(o->method == HRM_RECTANGLE && o->jitter
+                         : HRM__R(0.01 * pow((double)o->steps, -(mi->driver == HRM__DRV_RECT && o->jitter
                                                                   ? 1 : mi->order)));
     /* below a few dozen epsilons round-off in tau dominates any estimate */
     if (o->tau_tol < 64 * HRM__EPS) o->tau_tol = 64 * HRM__EPS;
@@ -5888,11 +5910,10 @@ static hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, hrm__memo *memo, hrm_
        again for nothing. */
     t_fine = HRM_FABS(t0) * HRM__EPS <= c->T / 4096;
     c->piece_cost = hrm__piece_cost(o);
-    c->split_cost = o->method == HRM_NESTED_SIMPSON ? 4 : o->gk_rule == HRM_GK_K7 ? 14 : 30;
+    c->split_cost = mi->driver == HRM__DRV_NS ? 4 : o->gk_rule == HRM_GK_K7 ? 14 : 30;
     c->find_jumps = o->find_jumps >= 0 && !c->rte &&
                     (HRM_FABS(t0) <= c->T || HRM_FABS(t0) * HRM__EPS <= c->T / HRM__R(1073741824.0)) &&
-                    (o->method == HRM_NESTED_SIMPSON ||
-                     (o->method == HRM_GAUSS_KRONROD && o->gk_mode == HRM_GK_GLOBAL));
+                    (hrm__driver(o) == HRM__DRV_NS || hrm__driver(o) == HRM__DRV_GK);
     /* the medium scan: adaptive methods by default, fixed-step ones when
        asked (find_jumps = 1; their cost is otherwise N's alone) */
     c->scan = (o->find_jumps == 1 || (o->find_jumps == 0 && hrm__is_adaptive(o->method))) && !c->homog && !m->transmittance &&
@@ -5985,14 +6006,12 @@ static void hrm__adaptive_once(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM
     const hrm__method_info *mi = &hrm__methods[o->method];
     hrm__fill(c->err_acc, HRM__CH, 0);
     c->rough_left = HRM__JUMP;
-    if (o->method == HRM_NESTED_SIMPSON)
-        hrm__nested_simpson(c, o->steps, y);
-    else if (o->method == HRM_GAUSS_KRONROD && o->gk_mode == HRM_GK_LOCAL)
-        hrm__gk_local(c, o->steps, y);
-    else if (o->method == HRM_GAUSS_KRONROD)
-        hrm__gk_global(c, o->steps, y);
-    else
-        hrm__ivp_adaptive(c, mi->tb, o->control, o->h0, y);
+    switch (hrm__driver(o)) {
+    case HRM__DRV_NS: hrm__nested_simpson(c, o->steps, y); break;
+    case HRM__DRV_GK_LOCAL: hrm__gk_local(c, o->steps, y); break;
+    case HRM__DRV_GK: hrm__gk_global(c, o->steps, y); break;
+    default: hrm__ivp_adaptive(c, mi->tb, o->control, o->h0, y);
+    }
 }
 
 /* The adaptive methods, verified: the shares of the tolerance their steps
@@ -6044,20 +6063,17 @@ static void hrm__dispatch_one(hrm__ctx *c, const hrm_options *o, int N, hrm_real
 {
     const hrm__method_info *mi = &hrm__methods[o->method];
     hrm__fill(y, HRM__NY, 0);
-    switch (mi->family) {
-    case HRM__FIXED_QUAD:
-        if (o->method == HRM_SIMPSON)
-            hrm__simpson(c, N, y + HRM__CH, y);
-        else if (o->method == HRM_RECTANGLE)
-            hrm__nodes(c, N, 0, o->jitter ? hrm__uniform(&c->rng) : HRM__R(0.5), y + HRM__CH, y);
-        else if (o->method == HRM_ANALYTIC_MARCH)
-            hrm__march(c, N, o->jitter ? hrm__uniform(&c->rng) : HRM__R(0.5), y + HRM__CH, y);
-        else
-            hrm__nodes(c, N, o->stratified ? 1 : 2, 0, y + HRM__CH, y);
+    switch (mi->driver) {
+    case HRM__DRV_SIMPSON: hrm__simpson(c, N, y + HRM__CH, y); break;
+    case HRM__DRV_RECT:
+        hrm__nodes(c, N, 0, o->jitter ? hrm__uniform(&c->rng) : HRM__R(0.5), y + HRM__CH, y);
         break;
-    case HRM__FIXED_IVP:
-        hrm__ivp_fixed(c, mi->tb, o->method == HRM_ADAMS_BASHFORTH, N, y);
+    case HRM__DRV_MARCH:
+        hrm__march(c, N, o->jitter ? hrm__uniform(&c->rng) : HRM__R(0.5), y + HRM__CH, y);
         break;
+    case HRM__DRV_MC: hrm__nodes(c, N, o->stratified ? 1 : 2, 0, y + HRM__CH, y); break;
+    case HRM__DRV_IVP:
+    case HRM__DRV_AB4: hrm__ivp_fixed(c, mi->tb, mi->driver == HRM__DRV_AB4, N, y); break;
     default:
         hrm__adaptive(c, o, y);
     }
@@ -6761,11 +6777,11 @@ static HRM__NOINLINE hrm_status hrm__solve_job(hrm__job *j)
     int k;
 
     memset(&c, 0, sizeof c);
-    if (j->ws && o->method == HRM_NESTED_SIMPSON) {
+    if (j->ws && hrm__driver(o) == HRM__DRV_NS) {
         c.ws_iv = (hrm__iv *)hrm__ws_take(&j->ws, sizeof(hrm__iv) * HRM_NS_INTERVALS);
         c.ws_pool = (hrm__pt *)hrm__ws_take(&j->ws, sizeof(hrm__pt) * (4 * HRM_NS_INTERVALS + 1));
         c.ws_stack = (hrm__ns_iv *)hrm__ws_take(&j->ws, sizeof(hrm__ns_iv) * (HRM_MAX_DEPTH + 1));
-    } else if (j->ws && o->method == HRM_GAUSS_KRONROD && o->gk_mode == HRM_GK_GLOBAL) {
+    } else if (j->ws && hrm__driver(o) == HRM__DRV_GK) {
         c.ws_iv = (hrm__iv *)hrm__ws_take(&j->ws, sizeof(hrm__iv) * HRM_GK_INTERVALS);
     }
     st = hrm__setup(&c, j->layer, j->memo, j->ef, m, j->t0, t1, o, j->tr_only);
