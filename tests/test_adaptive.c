@@ -1060,8 +1060,8 @@ static void ad_workspace(void)
                                 o.warp.D = (hrm_real)(hard ? 0.05 : 1);
                             }
                             o.exponential = e;
-                            if (hrm_solve(&m, 0, 6, &o, &plain) == HRM_ERR_BAD_OPTION) continue;
                             s1 = hrm_solve(&m, 0, 6, &o, &plain);
+                            if (s1 == HRM_ERR_BAD_OPTION) continue; /* not this method's option */
                             need = hrm_workspace_size(&o);
                             o.workspace = ws;
                             o.workspace_size = need;
