@@ -17,7 +17,11 @@
              shadow rays through hrm_transmittance (Simpson, 8 panels,
              tau coupled).
    Every scene's shadow rays use these explicit options, shared by its
-   reference and every configuration.
+   reference and every configuration. Each thread gives hrm a workspace
+   (options.workspace, WS_BYTES): a camera ray's solve takes
+   hrm_workspace_size of it, the shadow rays its Li traces the rest, so
+   the solves' deep storage stays off the threads' stacks; the answers
+   are those of the stack, bit for bit.
 
    Baselines: what a renderer author writes by hand, here in this file
    (no library overhead in their cost), each with per-step analytic
@@ -81,6 +85,8 @@
 #define MAX_RUNGS 12
 #define MAX_OCC 6
 #define MAX_N 2048   /* the marches' largest step count */
+#define WS_BYTES (1u << 19) /* a thread's workspace for hrm: any camera solve
+                               and its shadow rays (hrm_workspace_size) */
 #define GL_N 8       /* the reference's nodes per panel */
 #define MAX_CUTS 32  /* the reference's breakpoints per ray */
 
@@ -432,6 +438,8 @@ typedef struct ray {
     long li, traced, lookups; /* what the ray cost, counted here */
     long shadow_lookups;      /* of the lookups, those of its shadow rays */
     hrm_status shadow_status; /* the first shadow ray's problem */
+    unsigned char *shadow_ws; /* its shadow rays' workspace (the rest of the */
+    size_t shadow_ws_size;    /* thread's, past the camera solve's share) */
 } ray;
 
 static void point_at(const ray *r, double t, double p[3])
@@ -509,6 +517,7 @@ static void shadow_ray(ray *r, const double p[3], const double d[3], double dist
     const scene *s = r->s;
     ray sr;
     hrm_medium m;
+    hrm_options so;
     double ta, tb;
     hrm_status st;
     Tr[0] = Tr[1] = Tr[2] = 1;
@@ -524,7 +533,10 @@ static void shadow_ray(ray *r, const double p[3], const double d[3], double dist
     memset(&m, 0, sizeof m);
     m.user = &sr;
     m.sigma_t = dens_sigma_t;
-    st = hrm_transmittance(&m, (hrm_real)ta, (hrm_real)tb, &s->shadow, Tr, NULL);
+    so = s->shadow;
+    so.workspace = r->shadow_ws;
+    so.workspace_size = r->shadow_ws_size;
+    st = hrm_transmittance(&m, (hrm_real)ta, (hrm_real)tb, &so, Tr, NULL);
     r->lookups += sr.lookups;
     r->shadow_lookups += sr.lookups;
     if (st != HRM_OK && r->shadow_status == HRM_OK) r->shadow_status = st;
@@ -1076,7 +1088,7 @@ static int camera_ray(const scene *s, int x, int y, ray *r, double *t0, double *
 /* Solve one camera ray (the drop-in: L + Tr * L_behind), by hrm, a
    baseline march or the reference. */
 static void shade(const scene *s, const config *cf, double q, int x, int y, double (*scratch)[3],
-                  pixel_out *po)
+                  unsigned char *ws, pixel_out *po)
 {
     ray r;
     double t0, t1, behind[3], Tr[3];
@@ -1152,6 +1164,14 @@ static void shade(const scene *s, const config *cf, double q, int x, int y, doub
            suits it (equiangular for the point light, none for the sun),
            or one solve for all (each Li a shadow ray per light) */
         po->nsol = cf->split ? s->nlights : 1;
+        /* the thread's workspace: the camera solve's storage first, its
+           shadow rays' in the rest (hrm_workspace_size each) */
+        if (hrm_workspace_size(&o) + hrm_workspace_size(&s->shadow) <= WS_BYTES) {
+            o.workspace = ws;
+            o.workspace_size = hrm_workspace_size(&o);
+            r.shadow_ws = ws + o.workspace_size;
+            r.shadow_ws_size = hrm_workspace_size(&s->shadow);
+        }
         for (k = 0; k < po->nsol; ++k) {
             hrm_options ok = o;
             hrm_status st;
@@ -1231,14 +1251,22 @@ static void *worker(void *arg)
     job *j = (job *)arg;
     frame *f = j->f;
     double (*scratch)[3] = (double (*)[3])malloc((MAX_N + 1) * sizeof *scratch);
+    /* each thread's workspace for hrm (options.workspace): its solves'
+       deep storage off the thread's stack, aligned to 16 */
+    unsigned char *mem = (unsigned char *)malloc(WS_BYTES + 16), *ws;
     double start = thread_cpu();
     int x, y, k;
-    if (!scratch) return NULL;
+    if (!scratch || !mem) {
+        free(scratch);
+        free(mem);
+        return NULL;
+    }
+    ws = mem + (16 - (size_t)((uintptr_t)mem % 16)) % 16;
     for (y = j->first; y < f->h; y += j->stride)
         for (x = 0; x < f->w; ++x) {
             size_t i = (size_t)y * f->w + x;
             pixel_out po;
-            shade(j->s, j->cf, j->q, x, y, scratch, &po);
+            shade(j->s, j->cf, j->q, x, y, scratch, ws, &po);
             memcpy(f->rgb + 3 * i, po.rgb, sizeof po.rgb);
             f->in[i] = (unsigned char)(po.met | (po.warned ? 2 : 0) | (near_light(j->s, x, y) ? 4 : 0));
             f->tr[i] = po.tr;
@@ -1256,6 +1284,7 @@ static void *worker(void *arg)
         }
     j->cpu = thread_cpu() - start;
     free(scratch);
+    free(mem);
     return NULL;
 }
 
