@@ -6926,13 +6926,48 @@ HRM__DEF size_t hrm_workspace_size(const hrm_options *options)
     return hrm__resolve(options, &o, 0) == HRM_OK ? hrm__ws_bytes(&o) : (size_t)0;
 }
 
+/* hrm_solve with options.cutoff, on valid input only (bad input is the
+   solve's to report, before any callback): where every channel's Tr
+   falls below the cut-off before t1, the ray solved up to there into *r
+   (a list of breakpoints loses those beyond the cut) and its status into
+   *st: 1; else 0, and the caller solves the whole ray. A frame of its own:
+   the copies it makes cost a solve without a cut-off nothing. */
+static HRM__NOINLINE int hrm__solve_cut(const hrm_medium *medium, hrm_real t0, hrm_real t1,
+                                        const hrm_options *options, hrm_result *r, hrm_status *st)
+{
+    hrm_options o;
+    hrm_real tc = t1, tr_end[HRM__CH], brk[HRM_MAX_BREAKS];
+    long calls;
+    int i, n = 0;
+    if (hrm__validate(medium, t0, t1, options, 0, &o) != HRM_OK) return 0;
+    calls = hrm__cut_point(medium, t0, t1, options->cutoff, &tc, tr_end);
+    if (!(tc < t1 && tc > t0)) return 0;
+    o = *options;
+    for (i = 0; i < o.nbreaks; ++i)
+        if (o.breaks[i] < tc) brk[n++] = o.breaks[i];
+    o.breaks = n ? brk : NULL;
+    o.nbreaks = n;
+    *st = hrm__run(medium, t0, tc, &o, 0, r->L, r->Tr, r->error, &r->stats, &r->njumps, r->jumps);
+    r->stats.medium_evals += calls;
+    if (*st >= 0) {
+        /* Tr of the whole ray; the remainder estimated with the mean S /
+           sigma_t of the part solved, L / (1 - Tr(t0, t_cut)), over Tr(t0,
+           t_cut) - Tr(t0, t1), in the error estimate */
+        for (i = 0; i < HRM__CH; ++i) {
+            hrm_real a = r->Tr[i], rem = 1 - a > 0 ? r->L[i] / (1 - a) * (a - tr_end[i]) : 0;
+            if (r->error[i] >= 0 && rem > 0) r->error[i] += rem;
+            r->Tr[i] = tr_end[i];
+        }
+        r->stats.t_cut = tc;
+    }
+    return 1;
+}
+
 HRM__DEF hrm_status hrm_solve(const hrm_medium *medium, hrm_real t0, hrm_real t1,
                               const hrm_options *options, hrm_result *result)
 {
     hrm_result r;
     hrm_status st;
-    hrm_real tc = t1, tr_end[HRM__CH];
-    long calls = 0;
     if (!result) return HRM_ERR_NULL_ARGUMENT;
     if (!medium) {
         memset(result, 0, sizeof *result);
@@ -6940,40 +6975,11 @@ HRM__DEF hrm_status hrm_solve(const hrm_medium *medium, hrm_real t0, hrm_real t1
         hrm__fill(result->error, HRM__CH, -1);
         return HRM_ERR_NULL_ARGUMENT;
     }
-    if (options && options->cutoff > 0 && options->cutoff <= 1 && HRM__FINITE(t0) && t1 > t0) {
-        /* early ray termination, on valid input only (bad input is the
-           solve's to report, before any callback): a list of breakpoints
-           loses those beyond the cut */
-        hrm_options chk;
-        if (hrm__validate(medium, t0, t1, options, 0, &chk) == HRM_OK)
-            calls = hrm__cut_point(medium, t0, t1, options->cutoff, &tc, tr_end);
-    }
-    if (tc < t1 && tc > t0) {
-        hrm_options o = *options;
-        hrm_real brk[HRM_MAX_BREAKS];
-        int i, n = 0;
-        for (i = 0; i < o.nbreaks; ++i)
-            if (o.breaks[i] < tc) brk[n++] = o.breaks[i];
-        o.breaks = n ? brk : NULL;
-        o.nbreaks = n;
-        st = hrm__run(medium, t0, tc, &o, 0, r.L, r.Tr, r.error, &r.stats, &r.njumps, r.jumps);
-        r.stats.medium_evals += calls;
-        if (st >= 0) {
-            /* Tr of the whole ray; the remainder estimated with the mean
-               S / sigma_t of the part solved, L / (1 - Tr(t0, t_cut)), over
-               Tr(t0, t_cut) - Tr(t0, t1), in the error estimate */
-            for (i = 0; i < HRM__CH; ++i) {
-                hrm_real a = r.Tr[i], rem = 1 - a > 0 ? r.L[i] / (1 - a) * (a - tr_end[i]) : 0;
-                if (r.error[i] >= 0 && rem > 0) r.error[i] += rem;
-                r.Tr[i] = tr_end[i];
-            }
-            r.stats.t_cut = tc;
-        }
-    } else {
-        /* Work on a local copy: result may alias nothing we read, and a
-           failed solve leaves exactly the defined error result. */
+    /* Work on a local copy: result may alias nothing we read, and a failed
+       solve leaves exactly the defined error result. */
+    if (!(options && options->cutoff > 0 && options->cutoff <= 1 && HRM__FINITE(t0) && t1 > t0 &&
+          hrm__solve_cut(medium, t0, t1, options, &r, &st)))
         st = hrm__run(medium, t0, t1, options, 0, r.L, r.Tr, r.error, &r.stats, &r.njumps, r.jumps);
-    }
     *result = r;
     return st;
 }
