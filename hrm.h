@@ -1475,9 +1475,9 @@ typedef struct hrm__ctx {
                                   the round-off floor alone */
     const struct hrm__gk_pair *gk; /* Gauss-Kronrod: the pair */
     hrm__memo *memo;       /* HRM__MEMO + 1 entries (adaptive methods) */
-    struct hrm__iv *ws_iv; /* the caller's workspace: the worst-first */
-    struct hrm__pt *ws_pool; /* intervals, nested Simpson's samples and */
-    struct hrm__ns_iv *ws_stack; /* its finish's stack (else NULL: the stack) */
+    struct hrm__ns_store *ns;  /* nested Simpson's storage */
+    struct hrm__ns_iv *finish; /* its finish's stack in the workspace, or NULL */
+    struct hrm__gk_store *gks; /* global Gauss-Kronrod's */
     int unresolved;        /* a warp's distinct nodes at one abscissa */
     int use_le, use_li;    /* source terms present */
     int per_length;        /* HRM_EMISSION_PER_LENGTH */
@@ -4788,8 +4788,8 @@ static void hrm__ns_local_run(hrm__ctx *c, const hrm__pt *a, const hrm__pt *m, c
     }
 }
 
-/* Its stack of HRM_MAX_DEPTH + 1 intervals on the stack, in a frame of
-   its own. */
+/* Its stack: in the caller's workspace, or else in a frame of its own,
+   held only while a finish runs (a storage-full solve: rare). */
 static HRM__NOINLINE void hrm__ns_local_on_stack(hrm__ctx *c, const hrm__pt *a, const hrm__pt *m,
                                                  const hrm__pt *b, hrm_real acc[HRM__NY])
 {
@@ -4800,9 +4800,10 @@ static HRM__NOINLINE void hrm__ns_local_on_stack(hrm__ctx *c, const hrm__pt *a, 
 static void hrm__ns_local(hrm__ctx *c, const hrm__pt *a, const hrm__pt *m, const hrm__pt *b,
                           hrm_real acc[HRM__NY])
 {
-    if (c->ws_stack) hrm__ns_local_run(c, a, m, b, acc, c->ws_stack);
+    if (c->finish) hrm__ns_local_run(c, a, m, b, acc, c->finish);
     else hrm__ns_local_on_stack(c, a, m, b, acc);
 }
+
 
 /* What a Gauss-Kronrod interval knows of its surroundings and returns
    for its halves: the source at its ends where sampled (the ray's ends,
@@ -5184,6 +5185,18 @@ typedef struct hrm__iv {
     hrm_real score; /* its estimates over their shares (hrm__wf_sum) */
 } hrm__iv;
 
+/* The worst-first drivers' storage: nested Simpson's intervals and their
+   samples; global Gauss-Kronrod's intervals. Held (hrm__stage) only by
+   the solves that run them. */
+typedef struct hrm__ns_store {
+    hrm__iv iv[HRM_NS_INTERVALS];
+    hrm__pt pool[4 * HRM_NS_INTERVALS + 1];
+} hrm__ns_store;
+
+typedef struct hrm__gk_store {
+    hrm__iv iv[HRM_GK_INTERVALS];
+} hrm__gk_store;
+
 typedef struct hrm__wf {
     hrm__iv *iv;
     int n, cap;   /* intervals held, storage */
@@ -5506,8 +5519,9 @@ static void hrm__finish_scale(hrm__ctx *c, const hrm_real *tot, hrm_real acc[HRM
 
 /* Gauss-Kronrod, global mode: worst first from n0 intervals while they fit
    in HRM_GK_INTERVALS, then each is finished left to right. */
-static void hrm__gk_global_run(hrm__ctx *c, int n0, hrm_real acc[HRM__NY], hrm__iv *iv)
+static void hrm__gk_global(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
 {
+    hrm__iv *iv = c->gks->iv;
     hrm__wf w;
     hrm_real span = c->pb - c->pa, S[2][HRM__CH], tot[HRM__NY];
     int i, has[2];
@@ -5541,25 +5555,15 @@ static void hrm__gk_global_run(hrm__ctx *c, int n0, hrm_real acc[HRM__NY], hrm__
                           iv[i].io.hb ? iv[i].io.Sb : 0, acc);
 }
 
-/* Its intervals on the stack, in a frame of its own. */
-static HRM__NOINLINE void hrm__gk_on_stack(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
-{
-    hrm__iv iv[HRM_GK_INTERVALS];
-    hrm__gk_global_run(c, n0, acc, iv);
-}
-
-static void hrm__gk_global(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
-{
-    if (c->ws_iv) hrm__gk_global_run(c, n0, acc, c->ws_iv);
-    else hrm__gk_on_stack(c, n0, acc);
-}
 
 /* Nested Simpson: worst first from the initial panels while the intervals
    fit in HRM_NS_INTERVALS, then each interval whose estimate exceeds its
    share of the tolerance (hrm__ratio, at the scale of the total found) is
    finished left to right from its two halves. */
-static void hrm__ns_run(hrm__ctx *c, int panels, hrm_real acc[HRM__NY], hrm__iv *iv, hrm__pt *pool)
+static void hrm__nested_simpson(hrm__ctx *c, int panels, hrm_real acc[HRM__NY])
 {
+    hrm__iv *iv = c->ns->iv;
+    hrm__pt *pool = c->ns->pool;
     hrm__wf w;
     hrm_real span = c->pb - c->pa, tot[HRM__NY];
     int k, i;
@@ -5610,19 +5614,6 @@ static void hrm__ns_run(hrm__ctx *c, int panels, hrm_real acc[HRM__NY], hrm__iv 
     }
 }
 
-/* Its storage on the stack, in a frame of its own. */
-static HRM__NOINLINE void hrm__ns_on_stack(hrm__ctx *c, int panels, hrm_real acc[HRM__NY])
-{
-    hrm__iv iv[HRM_NS_INTERVALS];
-    hrm__pt pool[4 * HRM_NS_INTERVALS + 1];
-    hrm__ns_run(c, panels, acc, iv, pool);
-}
-
-static void hrm__nested_simpson(hrm__ctx *c, int panels, hrm_real acc[HRM__NY])
-{
-    if (c->ws_iv) hrm__ns_run(c, panels, acc, c->ws_iv, c->ws_pool);
-    else hrm__ns_on_stack(c, panels, acc);
-}
 
 /* ---------------------------------------------------------------------- */
 /* Dispatcher and public functions                                         */
@@ -5674,32 +5665,44 @@ HRM__DEF hrm_options hrm_default_options(hrm_method method)
 }
 
 /* Resolve zeros to defaults; validate. */
-/* The workspace: each block rounded up to 16 bytes (the alignment the
-   caller's memory has). */
-static size_t hrm__ws_round(size_t n) { return (n + 15) / 16 * 16; }
+/* The storage a solve may need, one bit each (hrm__needs, hrm__stage). */
+#define HRM__NEED_LAYER 1u /* the transmittance layer (18 KiB at 3 channels) */
+#define HRM__NEED_MEMO 2u  /* the adaptive methods' remembered abscissae */
+#define HRM__NEED_EFIT 4u  /* the exponential fits' tables */
+#define HRM__NEED_NS 8u    /* nested Simpson's storage */
+#define HRM__NEED_GK 16u   /* global Gauss-Kronrod's intervals */
+#define HRM__NEED_FINISH 32u /* nested Simpson's finish stack: a workspace's
+                              only (without one, the finish's own frame) */
+#define HRM__NEEDS 6
 
-static void *hrm__ws_take(unsigned char **ws, size_t n)
+/* The bytes of need bit k (1u << k), rounded up to 16 (the alignment of
+   the caller's workspace, which holds them in this order). */
+static size_t hrm__need_bytes(int k)
 {
-    void *at = *ws;
-    *ws += hrm__ws_round(n);
-    return at;
+    static const size_t bytes[HRM__NEEDS] = {sizeof(hrm__tau), sizeof(hrm__memo) * (HRM__MEMO + 1),
+                                             sizeof(hrm__efit) * 2, sizeof(hrm__ns_store),
+                                             sizeof(hrm__gk_store), sizeof(hrm__ns_iv) * (HRM_MAX_DEPTH + 1)};
+    return (bytes[k] + 15) / 16 * 16;
 }
 
-/* What hrm_workspace_size says for resolved options o: the layer (which
-   sigma callbacks may need with any method), the adaptive methods' memo,
-   the fits' tables where a fit may run, and nested Simpson's or global
-   Gauss-Kronrod's intervals, samples and finish. */
+/* What a solve with resolved options o may need, whatever its medium
+   (the layer: sigma callbacks may need it with any method); the storage
+   hrm__needs asks for at the solve is a part of it. */
+static unsigned hrm__may_need(const hrm_options *o)
+{
+    int d = hrm__driver(o);
+    return HRM__NEED_LAYER | (hrm__is_adaptive(o->method) ? HRM__NEED_MEMO : 0u) |
+           (o->exponential ? HRM__NEED_EFIT : 0u) | (d == HRM__DRV_NS ? HRM__NEED_NS | HRM__NEED_FINISH : 0u) |
+           (d == HRM__DRV_GK ? HRM__NEED_GK : 0u);
+}
+
+/* What hrm_workspace_size says for resolved options o. */
 static size_t hrm__ws_bytes(const hrm_options *o)
 {
-    size_t n = hrm__ws_round(sizeof(hrm__tau));
-    int d = hrm__driver(o);
-    if (hrm__is_adaptive(o->method)) n += hrm__ws_round(sizeof(hrm__memo) * (HRM__MEMO + 1));
-    if (o->exponential) n += hrm__ws_round(sizeof(hrm__efit) * 2);
-    if (d == HRM__DRV_NS)
-        n += hrm__ws_round(sizeof(hrm__iv) * HRM_NS_INTERVALS) +
-             hrm__ws_round(sizeof(hrm__pt) * (4 * HRM_NS_INTERVALS + 1)) +
-             hrm__ws_round(sizeof(hrm__ns_iv) * (HRM_MAX_DEPTH + 1));
-    if (d == HRM__DRV_GK) n += hrm__ws_round(sizeof(hrm__iv) * HRM_GK_INTERVALS);
+    size_t n = 0;
+    int k;
+    for (k = 0; k < HRM__NEEDS; ++k)
+        if (hrm__may_need(o) & (1u << k)) n += hrm__need_bytes(k);
     return n;
 }
 
@@ -6706,22 +6709,17 @@ typedef struct hrm__job {
     int *njumps;
     hrm_real *jumps;
     unsigned need;         /* HRM__NEED_*: storage still to provide */
-    hrm__tau *layer;
-    hrm__memo *memo;
-    hrm__efit *ef;
+    void *at[HRM__NEEDS];  /* where each need is held (need bit k: at[k]) */
     unsigned char *ws;     /* the caller's workspace, what is left of it */
 } hrm__job;
-
-#define HRM__NEED_LAYER 1u /* the transmittance layer (18 KiB at 3 channels) */
-#define HRM__NEED_MEMO 2u  /* the adaptive methods' remembered abscissae */
-#define HRM__NEED_EFIT 4u  /* the exponential fits' tables */
 
 /* The storage a solve needs: the layer where tau comes from it, or where
    the distance warp's reach is marched on sigma callbacks (not for the
    shadow-ray estimator, which keeps its own panels); the memo for the
-   adaptive methods; the fits' tables where a fit runs. Each is held in a
-   frame of its own only then, so that a fixed-step solve on constants
-   reserves none of it. */
+   adaptive methods; the fits' tables where a fit runs; the worst-first
+   drivers' storage where they run. Each is held only then, in the
+   caller's workspace or in a frame of its own, so that a fixed-step solve
+   on constants reserves none of it. */
 static unsigned hrm__needs(const hrm_medium *m, const hrm_options *o, const hrm_options *in, int tr_only,
                            hrm_real t1)
 {
@@ -6737,15 +6735,20 @@ static unsigned hrm__needs(const hrm_medium *m, const hrm_options *o, const hrm_
         need |= HRM__NEED_LAYER;
     if (hrm__is_adaptive(o->method)) need |= HRM__NEED_MEMO;
     if (o->exponential && hrm__tau_closed(src)) need |= HRM__NEED_EFIT;
+    /* the drivers run where there is a source or tau comes from their
+       nodes (not for Tr alone from the layer or a closed form) */
+    if (!estimator && (le || li || !hrm__tau_closed(src)))
+        need |= hrm__may_need(o) & (HRM__NEED_NS | HRM__NEED_GK | HRM__NEED_FINISH);
     return need;
 }
 
 static hrm_status hrm__stage(hrm__job *j);
 
+/* Without a workspace, each need in a frame of its own. */
 static HRM__NOINLINE hrm_status hrm__with_layer(hrm__job *j)
 {
     hrm__tau layer;
-    j->layer = &layer;
+    j->at[0] = &layer;
     j->need &= ~HRM__NEED_LAYER;
     return hrm__stage(j);
 }
@@ -6753,7 +6756,7 @@ static HRM__NOINLINE hrm_status hrm__with_layer(hrm__job *j)
 static HRM__NOINLINE hrm_status hrm__with_memo(hrm__job *j)
 {
     hrm__memo memo[HRM__MEMO + 1];
-    j->memo = memo;
+    j->at[1] = memo;
     j->need &= ~HRM__NEED_MEMO;
     return hrm__stage(j);
 }
@@ -6761,8 +6764,24 @@ static HRM__NOINLINE hrm_status hrm__with_memo(hrm__job *j)
 static HRM__NOINLINE hrm_status hrm__with_efit(hrm__job *j)
 {
     hrm__efit ef[2];
-    j->ef = ef;
+    j->at[2] = ef;
     j->need &= ~HRM__NEED_EFIT;
+    return hrm__stage(j);
+}
+
+static HRM__NOINLINE hrm_status hrm__with_ns(hrm__job *j)
+{
+    hrm__ns_store ns;
+    j->at[3] = &ns;
+    j->need &= ~HRM__NEED_NS;
+    return hrm__stage(j);
+}
+
+static HRM__NOINLINE hrm_status hrm__with_gk(hrm__job *j)
+{
+    hrm__gk_store gks;
+    j->at[4] = &gks;
+    j->need &= ~HRM__NEED_GK;
     return hrm__stage(j);
 }
 
@@ -6777,14 +6796,11 @@ static HRM__NOINLINE hrm_status hrm__solve_job(hrm__job *j)
     int k;
 
     memset(&c, 0, sizeof c);
-    if (j->ws && hrm__driver(o) == HRM__DRV_NS) {
-        c.ws_iv = (hrm__iv *)hrm__ws_take(&j->ws, sizeof(hrm__iv) * HRM_NS_INTERVALS);
-        c.ws_pool = (hrm__pt *)hrm__ws_take(&j->ws, sizeof(hrm__pt) * (4 * HRM_NS_INTERVALS + 1));
-        c.ws_stack = (hrm__ns_iv *)hrm__ws_take(&j->ws, sizeof(hrm__ns_iv) * (HRM_MAX_DEPTH + 1));
-    } else if (j->ws && hrm__driver(o) == HRM__DRV_GK) {
-        c.ws_iv = (hrm__iv *)hrm__ws_take(&j->ws, sizeof(hrm__iv) * HRM_GK_INTERVALS);
-    }
-    st = hrm__setup(&c, j->layer, j->memo, j->ef, m, j->t0, t1, o, j->tr_only);
+    c.ns = (hrm__ns_store *)j->at[3];
+    c.gks = (hrm__gk_store *)j->at[4];
+    c.finish = (hrm__ns_iv *)j->at[5];
+    st = hrm__setup(&c, (hrm__tau *)j->at[0], (hrm__memo *)j->at[1], (hrm__efit *)j->at[2], m, j->t0, t1,
+                    o, j->tr_only);
     *j->stats = c.stats;
     if (st != HRM_OK) return st;
     if (j->t0 == t1) {
@@ -6819,20 +6835,27 @@ static HRM__NOINLINE hrm_status hrm__solve_job(hrm__job *j)
     return st;
 }
 
+/* The storage j needs, then the solve: all of it from the caller's
+   workspace (in hrm__need_bytes' order, within what hrm__ws_bytes
+   asked for: the needs are a part of hrm__may_need), else each in a
+   frame of its own. */
 static hrm_status hrm__stage(hrm__job *j)
 {
+    int k;
     if (j->ws && j->need) {
-        /* all of it from the caller's workspace */
-        if (j->need & HRM__NEED_LAYER) j->layer = (hrm__tau *)hrm__ws_take(&j->ws, sizeof(hrm__tau));
-        if (j->need & HRM__NEED_MEMO)
-            j->memo = (hrm__memo *)hrm__ws_take(&j->ws, sizeof(hrm__memo) * (HRM__MEMO + 1));
-        if (j->need & HRM__NEED_EFIT) j->ef = (hrm__efit *)hrm__ws_take(&j->ws, sizeof(hrm__efit) * 2);
+        for (k = 0; k < HRM__NEEDS; ++k)
+            if (j->need & (1u << k)) {
+                j->at[k] = j->ws;
+                j->ws += hrm__need_bytes(k);
+            }
         j->need = 0;
     }
     if (j->need & HRM__NEED_LAYER) return hrm__with_layer(j);
     if (j->need & HRM__NEED_MEMO) return hrm__with_memo(j);
     if (j->need & HRM__NEED_EFIT) return hrm__with_efit(j);
-    return hrm__solve_job(j);
+    if (j->need & HRM__NEED_NS) return hrm__with_ns(j);
+    if (j->need & HRM__NEED_GK) return hrm__with_gk(j);
+    return hrm__solve_job(j); /* (HRM__NEED_FINISH without a workspace: hrm__ns_local) */
 }
 
 /* The one solve behind hrm_solve and hrm_transmittance (tr_only: no
@@ -6869,6 +6892,7 @@ static hrm_status hrm__run(const hrm_medium *m, hrm_real t0, hrm_real t1,
     j.jumps = jumps;
     j.need = hrm__needs(m, &j.o, in, tr_only, t1);
     j.ws = (unsigned char *)j.o.workspace;
+    if (!j.ws) j.need &= ~HRM__NEED_FINISH;
     return hrm__stage(&j);
 }
 
