@@ -460,8 +460,8 @@
    2 sqrt(sum e^2). It starts with 4 panels (17 lookups), none wider than
    medium.feature where given. cutoff > 0: segments left to right, ending
    once every channel's Tr is below it (that Tr returned, stats.t_cut where;
-   bench/results/shadow.md measures it). A named method integrates as
-   hrm_solve (options.warp only ends an infinite ray).
+   bench/results/shadow.md measures it). A named method, or an infinite
+   ray, integrates as hrm_solve (options.warp only ends an infinite ray).
 
    ==========================================================================
    NOT DONE BY hrm: tracing rays, sampling lights, phase functions (Li is
@@ -6701,9 +6701,9 @@ static HRM__NOINLINE void hrm__shadow_march(hrm__ctx *c, const hrm_options *o, h
 typedef struct hrm__job {
     const hrm_medium *m;
     hrm_real t0, t1;
-    const hrm_options *in; /* as the caller gave them */
     hrm_options o;         /* resolved */
     int tr_only;
+    int estimator;         /* hrm_transmittance's shadow-ray estimator */
     hrm_real *L, *Tr, *err;
     hrm_stats *stats;
     int *njumps;
@@ -6720,11 +6720,10 @@ typedef struct hrm__job {
    drivers' storage where they run. Each is held only then, in the
    caller's workspace or in a frame of its own, so that a fixed-step solve
    on constants reserves none of it. */
-static unsigned hrm__needs(const hrm_medium *m, const hrm_options *o, const hrm_options *in, int tr_only,
+static unsigned hrm__needs(const hrm_medium *m, const hrm_options *o, int tr_only, int estimator,
                            hrm_real t1)
 {
     int le, li;
-    int estimator = tr_only && (!in || in->method == HRM_METHOD_DEFAULT);
     int sigma_cb = !(m->flags & HRM_MEDIUM_HOMOGENEOUS) && !m->transmittance;
     hrm__tau_src src;
     unsigned need = 0;
@@ -6808,8 +6807,7 @@ static HRM__NOINLINE hrm_status hrm__solve_job(hrm__job *j)
         return st;
     }
     c.stats.t_cut = t1;
-    if (j->tr_only && (!j->in || j->in->method == HRM_METHOD_DEFAULT) && !c.homog && !m->transmittance &&
-        HRM__FINITE(c.T)) {
+    if (j->estimator) {
         /* the shadow-ray estimator */
         hrm__shadow_march(&c, o, y);
         *j->stats = c.stats;
@@ -6882,15 +6880,19 @@ static hrm_status hrm__run(const hrm_medium *m, hrm_real t0, hrm_real t1,
     j.m = m;
     j.t0 = t0;
     j.t1 = t1;
-    j.in = in;
     j.tr_only = tr_only;
+    /* Tr alone without a method named, where sigma_t must be integrated
+       over a finite ray: the shadow-ray estimator (its own panels; an
+       infinite ray goes the way of a named method, the layer's) */
+    j.estimator = tr_only && (!in || in->method == HRM_METHOD_DEFAULT) && !(m->flags & HRM_MEDIUM_HOMOGENEOUS) &&
+                  !m->transmittance && HRM__FINITE(t1);
     j.L = L;
     j.Tr = Tr;
     j.err = err;
     j.stats = stats;
     j.njumps = njumps;
     j.jumps = jumps;
-    j.need = hrm__needs(m, &j.o, in, tr_only, t1);
+    j.need = hrm__needs(m, &j.o, tr_only, j.estimator, t1);
     j.ws = (unsigned char *)j.o.workspace;
     if (!j.ws) j.need &= ~HRM__NEED_FINISH;
     return hrm__stage(&j);

@@ -1519,6 +1519,66 @@ static void tr_camera_cutoff(void)
     }
 }
 
+/* hrm_transmittance with no method named on an infinite ray: not the
+   shadow-ray estimator (which needs a finite ray) but sigma_t integrated
+   by the transmittance layer, as with a named method, under the distance
+   warp (whose reach is marched on the layer) and the equiangular warp.
+   sigma_t = 0.4 on [0, 2) and 0 beyond, through sigma callbacks: Tr =
+   e^-0.8, within 1e-3 (the layer's tau_tol is rtol / 8 = 1.25e-4, its
+   error in tau that times (1 + K / 64)); as constants (0.4 everywhere):
+   Tr = 0. The layer this takes was not held once (a crash). */
+static void tr_inf_sig(void *u, hrm_real t, hrm_real sa[NCH], hrm_real ss[NCH])
+{
+    int c;
+    (void)u;
+    for (c = 0; c < NCH; ++c) {
+        sa[c] = (hrm_real)(t < 2 ? 0.1 : 0);
+        ss[c] = (hrm_real)(t < 2 ? 0.3 : 0);
+    }
+}
+
+static void tr_infinite_default(void)
+{
+    int w, cb, k;
+    for (w = 0; w < 2; ++w)
+        for (cb = 0; cb < 2; ++cb)
+            for (k = 0; k < 2; ++k) {
+                hrm_medium m;
+                hrm_options o;
+                hrm_real Tr[NCH];
+                hrm_stats st;
+                int c;
+                memset(&m, 0, sizeof m);
+                memset(&o, 0, sizeof o); /* method 0: no method named */
+                if (cb) {
+                    m.sigma = tr_inf_sig;
+                } else {
+                    m.flags = HRM_MEDIUM_HOMOGENEOUS;
+                    for (c = 0; c < NCH; ++c) {
+                        m.const_sigma_a[c] = (hrm_real)0.1;
+                        m.const_sigma_s[c] = (hrm_real)0.3;
+                    }
+                }
+                if (w == 0) {
+                    o.warp.kind = HRM_WARP_DISTANCE;
+                    o.warp.sigma_ref = (hrm_real)(k ? 0 : 0.5);
+                } else {
+                    o.warp.kind = HRM_WARP_EQUIANGULAR;
+                    o.warp.delta = (hrm_real)(k ? 1 : -1);
+                    o.warp.D = 1;
+                }
+                CHECK_INT(hrm_transmittance(&m, 0, (hrm_real)INFINITY, &o, Tr, &st), HRM_OK,
+                          "infinite ray, no method, warp %d (%d), %s: status", w, k, cb ? "sigma cb" : "constants");
+                for (c = 0; c < NCH; ++c) {
+                    if (cb)
+                        CHECK_REL(Tr[c], exp(-0.8), 1e-3, "infinite ray, no method, warp %d (%d), sigma cb: Tr", w, k);
+                    else
+                        CHECK(Tr[c] >= 0 && (double)Tr[c] <= 1e-12, "infinite ray, no method, warp %d (%d), constants: Tr %g",
+                              w, k, (double)Tr[c]);
+                }
+            }
+}
+
 void transmittance_tests(void)
 {
     RUN_GROUP(tr_constant_sigma);
@@ -1538,4 +1598,5 @@ void transmittance_tests(void)
     RUN_GROUP(tr_camera_cutoff);
     RUN_GROUP(tr_clipped_blob);
     RUN_GROUP(tr_taught_remarch);
+    RUN_GROUP(tr_infinite_default);
 }
