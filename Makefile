@@ -18,7 +18,7 @@
 #                for FUZZ_TIME seconds (default 60) from the seed corpus
 #                tests/corpus/; findings in build/fuzz/crashes/ (needs clang's
 #                libFuzzer: Debian package libfuzzer-14-dev where missing)
-#   make render  the renderer-level comparison (examples/render.c): three
+#   make render  the renderer-level comparison (examples/render.c): four
 #                scenes, an independent reference each, the production
 #                marches and hrm's configurations over ladders of budgets,
 #                costs at equal RMSE; sheets and summary.md in render/out/
@@ -122,7 +122,8 @@ render-quick: $(BUILD)/example_render
 render-snapshot: render
 	@mkdir -p examples/results
 	cp render/out/shafts_overview.png render/out/cloud_overview.png \
-	    render/out/smoke_overview.png render/out/summary.md examples/results/
+	    render/out/smoke_overview.png render/out/lamps_overview.png \
+	    render/out/summary.md examples/results/
 
 examples: $(BUILD)/example_ray $(BUILD)/example_render
 

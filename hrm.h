@@ -2944,7 +2944,7 @@ static hrm_real hrm__mix_u_of_t(void *user, hrm_real t)
 
 static double hrm__mix_invert(hrm_ray_plan *p, double want)
 {
-    double lo = p->t0, hi = p->t1, t;
+    double lo = p->t0, hi = p->t1, t, step, last;
     int it;
     if (want == p->last_u) return p->last_t;
     if (!(want > 0)) {
@@ -2960,15 +2960,31 @@ static double hrm__mix_invert(hrm_ray_plan *p, double want)
                 if (p->delta[it] + p->D[it] > hi) hi = p->delta[it] + p->D[it];
             for (it = 0; it < 2100 && hrm__mix_u(p, hi) < want; ++it) hi = p->t0 + 2 * (hi - p->t0) + 1;
         }
+        /* the solve's nodes come mostly in order: the last inversion
+           bounds this one and its tangent gives the first guess */
         t = (lo + hi) / 2;
+        if (p->last_u > 0 && p->last_u < p->u1) {
+            double g = hrm__mix_du(p, p->last_t), nt = g > 0 ? p->last_t + (want - p->last_u) / g : t;
+            if (want > p->last_u)
+                lo = p->last_t;
+            else
+                hi = p->last_t;
+            t = nt > lo && nt < hi ? nt : (lo + hi) / 2;
+        }
+        step = last = hi - lo;
         for (it = 0; it < 200; ++it) {
             double f = hrm__mix_u(p, t) - want, g = hrm__mix_du(p, t), nt;
             if (f < 0)
                 lo = t;
             else
                 hi = t;
-            nt = g > 0 ? t - f / g : (lo + hi) / 2;
-            if (!(nt > lo && nt < hi)) nt = (lo + hi) / 2;
+            /* Newton inside the bracket that at least halves the step
+               before last, else bisection: Newton alone can swing across
+               the flat stretch between two lights without converging */
+            nt = g > 0 ? t - f / g : lo;
+            if (!(nt > lo && nt < hi) || 2 * fabs(nt - t) > last) nt = (lo + hi) / 2;
+            last = step;
+            step = fabs(nt - t);
             if (nt == t || hi - lo <= 4 * DBL_EPSILON * fabs(t)) break;
             t = nt;
         }

@@ -1,4 +1,4 @@
-/* render.c - `make render`: three scenes rendered by hrm.h the way a
+/* render.c - `make render`: four scenes rendered by hrm.h the way a
    renderer calls it (one hrm_solve per camera ray, the public API only),
    measured by what a renderer pays at equal image error, against the
    marches production renderers ship and an independent reference.
@@ -16,6 +16,14 @@
              edges, a sphere occluder casting a shaft down the beam;
              shadow rays through hrm_transmittance (Simpson, 8 panels,
              tau coupled).
+     lamps   four point lights at depths 3 to 11 along the view in a
+             homogeneous fog, a wall behind them; shadow rays analytic.
+             The four described to hrm_light_options at once (its
+             mixture warp, one solve whose Li traces four shadow rays)
+             against one solve per lamp described alone (its equiangular
+             warp, one shadow ray a Li), at equal traced shadow rays, for
+             the image and for each lamp's light (the mixture's share:
+             each lamp's solve under the mixture's warp).
    Every scene's shadow rays use these explicit options, shared by its
    reference and every configuration. Each thread gives hrm a workspace
    (options.workspace, WS_BYTES): a camera ray's solve takes
@@ -34,7 +42,8 @@
                         from a uniform march of N steps (their decoupled
                         march); a directional light (the cloud's sun) by
                         a uniform march that shares those sigma samples
-                        (one march per light, Cycles' way)
+                        (one march per light, Cycles' way); the lamps
+                        one march of N steps each
    Speedups are quoted against the best baseline at each RMSE and cost.
 
    References: composite Gauss-Legendre (8 nodes a panel) in t, a rule no
@@ -62,8 +71,8 @@
      <scene>_reference.png
      summary.md             every rung, the equal-RMSE tables
 
-   usage: render [outdir [scene [quick]]]   scene: shafts, cloud, smoke
-   or all. Threads: one per processor (sysconf), rows interleaved. */
+   usage: render [outdir [scene [quick]]]   scene: shafts, cloud, smoke,
+   lamps or all. Threads: one per processor (sysconf), rows interleaved. */
 #define _POSIX_C_SOURCE 200809L
 #define HRM_IMPLEMENTATION
 #include "hrm.h"
@@ -84,6 +93,7 @@
 #define PI 3.14159265358979323846
 #define MAX_RUNGS 12
 #define MAX_OCC 6
+#define MAX_LIGHTS 4 /* the lamps' */
 #define MAX_N 2048   /* the marches' largest step count */
 #define WS_BYTES (1u << 19) /* a thread's workspace for hrm: any camera solve
                                and its shadow rays (hrm_workspace_size) */
@@ -183,7 +193,7 @@ static double phi1(double x)
 /* ======================================================================
    Scenes
    ====================================================================== */
-enum { SHAFTS, CLOUD, SMOKE };
+enum { SHAFTS, CLOUD, SMOKE, LAMPS };
 
 typedef struct occluder {
     double c[3], r;
@@ -202,8 +212,10 @@ typedef struct scene {
     int w, h;
     double eye[3], tan_half;  /* camera at eye looking down +z */
     int nlights;              /* lights: bit 0 the point or spot light,
-                                 bit 1 the sun (cloud) */
+                                 bit 1 the sun (cloud); lamps: bit k
+                                 lamp k */
     double light[3], I[3];    /* point light or spot apex, intensity */
+    double lamp[MAX_LIGHTS][3], lamp_I[MAX_LIGHTS][3]; /* the lamps */
     occluder occ[MAX_OCC];    /* spheres between the light and the ray */
     int nocc;
     /* shafts: a homogeneous medium and a wall */
@@ -220,6 +232,19 @@ typedef struct scene {
     int ref_panels;           /* the reference's panels per ray */
     const gl_rule *gl;
 } scene;
+
+/* Light l's position: a lamp, or the scene's point or spot light. */
+static const double *light_pos(const scene *s, int l)
+{
+    return s->kind == LAMPS ? s->lamp[l] : s->light;
+}
+
+/* Whether the medium is homogeneous (sigma constant, shadow rays and
+   optical depths in closed form). */
+static int homogeneous(const scene *s)
+{
+    return s->kind == SHAFTS || s->kind == LAMPS;
+}
 
 static void make_shafts(scene *s, int quick)
 {
@@ -342,6 +367,38 @@ static void make_smoke(scene *s, int quick)
     s->shadow = hrm_default_options(HRM_SIMPSON);
     s->shadow.steps = 8;
     s->shadow.tau_mode = HRM_TAU_COUPLED;
+    s->ref_panels = 48;
+}
+
+/* Lamps: four point lights at depths 3 to 11 along the view (a street
+   of lamps receding into fog), in a homogeneous fog that ends on a wall
+   at z = 14 the lamps light; each camera ray passes all four, their
+   peaks along it apart. Shadow rays are analytic (exp(-sigma_t r)). */
+static void make_lamps(scene *s, int quick)
+{
+    static const double pos[MAX_LIGHTS][3] = {
+        {-0.5, 0.3, 3.0}, {0.7, -0.25, 5.5}, {-0.9, -0.6, 8.0}, {1.2, 0.9, 11.0}};
+    static const double I[MAX_LIGHTS][3] = {
+        {3.0, 2.6, 2.0}, {5.0, 5.5, 6.5}, {9.0, 8.0, 6.0}, {16.0, 13.0, 10.0}};
+    int i;
+    memset(s, 0, sizeof *s);
+    s->name = "lamps";
+    s->kind = LAMPS;
+    s->nlights = MAX_LIGHTS;
+    s->w = quick ? 64 : 128;
+    s->h = quick ? 48 : 96;
+    s->tan_half = 0.42;
+    for (i = 0; i < 3; ++i) {
+        s->sa[i] = 0.015;
+        s->ss[i] = 0.10 + 0.02 * i;
+        s->st[i] = s->sa[i] + s->ss[i];
+    }
+    memcpy(s->lamp, pos, sizeof pos);
+    memcpy(s->lamp_I, I, sizeof I);
+    memcpy(s->light, pos[0], sizeof s->light);
+    memcpy(s->I, I[0], sizeof s->I);
+    s->wall_z = 14.0;
+    s->wall_albedo[0] = s->wall_albedo[1] = s->wall_albedo[2] = 0.5;
     s->ref_panels = 48;
 }
 
@@ -594,16 +651,37 @@ static void smoke_Li(void *user, hrm_real t, hrm_real out[HRM_CHANNELS])
     for (c = 0; c < 3; ++c) out[c] = (hrm_real)(ph * cone * s->I[c] / (dist * dist) * (double)Tr[c]);
 }
 
+/* Lamps: in-scattered radiance at t from the lamps r->lights selects
+   (isotropic phase), each a traced shadow ray: 1/r^2 and exp(-sigma_t r). */
+static void lamps_Li(void *user, hrm_real t, hrm_real out[HRM_CHANNELS])
+{
+    ray *r = (ray *)user;
+    const scene *s = r->s;
+    double p[3], v[3], dist;
+    int c, l;
+    point_at(r, (double)t, p);
+    r->li++;
+    for (c = 0; c < 3; ++c) out[c] = 0;
+    for (l = 0; l < s->nlights; ++l) {
+        if (!(r->lights & (1 << l))) continue;
+        sub3(s->lamp[l], p, v);
+        dist = norm3(v);
+        r->traced++;
+        for (c = 0; c < 3; ++c)
+            out[c] += (hrm_real)(s->lamp_I[l][c] / (4 * PI * dist * dist) * exp(-s->st[c] * dist));
+    }
+}
+
 static hrm_spectrum_fn scene_Li(const scene *s)
 {
-    return s->kind == SHAFTS ? shafts_Li : s->kind == CLOUD ? cloud_Li : smoke_Li;
+    return s->kind == SHAFTS ? shafts_Li : s->kind == CLOUD ? cloud_Li : s->kind == SMOKE ? smoke_Li : lamps_Li;
 }
 
 /* sigma_t and sigma_s at t for the host's own marches: one lookup. */
 static void host_sigma(ray *r, double t, double st[3], double ss[3])
 {
     int c;
-    if (r->s->kind == SHAFTS) {
+    if (homogeneous(r->s)) {
         memcpy(st, r->s->st, sizeof r->s->st);
         memcpy(ss, r->s->ss, sizeof r->s->ss);
         return;
@@ -657,7 +735,7 @@ static double tau_at(const ray *r, double t, double t0, double dt, int N, double
 {
     double u, f;
     int k;
-    if (r->s->kind == SHAFTS) return r->s->st[c] * (t - t0);
+    if (homogeneous(r->s)) return r->s->st[c] * (t - t0);
     u = (t - t0) / dt;
     if (!(u > 0)) return 0;
     if (u >= N) return tau[N][c];
@@ -672,14 +750,14 @@ static double tau_at(const ray *r, double t, double t0, double dt, int N, double
    a step, the step's extinction exact from the optical depth at its ends
    (the closed form, or the decoupled uniform march's table). */
 static void march_equiangular(ray *r, double t0, double t1, int N, double xi, int lights,
-                              double tau[][3], double L[3])
+                              const double P[3], double tau[][3], double L[3])
 {
     const scene *s = r->s;
     double w[3], delta, D, perp[3], ta, tb, dth, dt = (t1 - t0) / N, st[3], ss[3];
     hrm_real li[3];
     hrm_spectrum_fn Li = scene_Li(s);
     int k, c;
-    sub3(s->light, r->o, w);
+    sub3(P, r->o, w);
     delta = dot3(w, r->d);
     for (c = 0; c < 3; ++c) perp[c] = w[c] - delta * r->d[c];
     D = sqrt(dot3(perp, perp));
@@ -773,9 +851,9 @@ static void sort_unique(double *v, int *n)
 
 /* The reference's cuts of [t0, t1] (t0 and t1 included): every cone of
    a shadow (tangent to an occluder from the light) and of the spot, the
-   density's sphere, the light's foot. Extra cuts cost nodes, not
-   accuracy. */
-static int reference_cuts(const ray *r, double t0, double t1, double *cut)
+   density's sphere, the foot of the light at P. Extra cuts cost nodes,
+   not accuracy. */
+static int reference_cuts(const ray *r, double t0, double t1, const double P[3], double *cut)
 {
     const scene *s = r->s;
     double a[3], w[3], x[2], ta, tb, delta;
@@ -797,11 +875,11 @@ static int reference_cuts(const ray *r, double t0, double t1, double *cut)
         m = cone_cross(r->o, r->d, s->light, s->axis, s->cos_out, t0, t1, x);
         for (i = 0; i < m; ++i) cut[n++] = x[i];
     }
-    if (s->kind != SHAFTS && sphere_span(r->o, r->d, s->cc, s->cr, &ta, &tb)) {
+    if (!homogeneous(s) && sphere_span(r->o, r->d, s->cc, s->cr, &ta, &tb)) {
         if (ta > t0 && ta < t1) cut[n++] = ta;
         if (tb > t0 && tb < t1) cut[n++] = tb;
     }
-    sub3(s->light, r->o, w);
+    sub3(P, r->o, w);
     delta = dot3(w, r->d);
     if (delta > t0 && delta < t1) cut[n++] = delta;
     sort_unique(cut, &n);
@@ -812,63 +890,72 @@ static int reference_cuts(const ray *r, double t0, double t1, double *cut)
    geometry's breakpoints and, between them, ends uniform in asinh((t -
    Delta) / D) (Delta, D: the light's foot and distance), about `panels`
    over the ray; Gauss-Legendre on each, tau at a node from the panel's
-   interpolant of sigma_t. L per light into Lk[light], Tr of the ray. */
-static void reference_ray(ray *r, double t0, double t1, int panels, double Lk[2][3], double Tr[3])
+   interpolant of sigma_t. L per light into Lk[light], Tr of the ray. The
+   lamps' medium is homogeneous: one pass per lamp, graded towards its
+   foot; the other scenes one pass for all their lights, graded towards
+   the point or spot light. */
+static void reference_ray(ray *r, double t0, double t1, int panels, double Lk[MAX_LIGHTS][3], double Tr[3])
 {
     const scene *s = r->s;
     const gl_rule *g = s->gl;
-    double cut[MAX_CUTS], w[3], perp[3], delta, D, u0, u1, tau[3] = {0, 0, 0};
+    double cut[MAX_CUTS], w[3], perp[3], delta, D, u0, u1, tau[3];
     hrm_spectrum_fn Li = scene_Li(s);
-    int ncut, i, k, j, c, l;
-    ncut = reference_cuts(r, t0, t1, cut);
-    sub3(s->light, r->o, w);
-    delta = dot3(w, r->d);
-    for (c = 0; c < 3; ++c) perp[c] = w[c] - delta * r->d[c];
-    D = sqrt(dot3(perp, perp));
-    if (D < 1e-9 * (t1 - t0)) D = 1e-9 * (t1 - t0);
-    u0 = asinh((t0 - delta) / D);
-    u1 = asinh((t1 - delta) / D);
-    memset(Lk, 0, 2 * 3 * sizeof(double));
-    for (i = 0; i + 1 < ncut; ++i) {
-        double a = cut[i], b = cut[i + 1];
-        double ua = asinh((a - delta) / D), ub = asinh((b - delta) / D);
-        int np = (int)ceil(panels * (ub - ua) / (u1 - u0));
-        if (np < 1) np = 1;
-        for (k = 0; k < np; ++k) {
-            double pa = k == 0 ? a : delta + D * sinh(ua + (ub - ua) * k / np);
-            double pb = k + 1 == np ? b : delta + D * sinh(ua + (ub - ua) * (k + 1) / np);
-            double h = (pb - pa) / 2, st[GL_N][3], ss[GL_N][3], x[GL_N];
-            if (!(pb > pa)) continue;
-            for (j = 0; j < GL_N; ++j) {
-                x[j] = pa + h * (1 + g->x[j]);
-                host_sigma(r, x[j], st[j], ss[j]);
-            }
-            for (j = 0; j < GL_N; ++j) {
-                double tj[3];
+    int ncut, i, k, j, c, l, pass, npass = s->kind == LAMPS ? s->nlights : 1;
+    memset(Lk, 0, MAX_LIGHTS * 3 * sizeof(double));
+    for (pass = 0; pass < npass; ++pass) {
+        const double *P = light_pos(s, pass);
+        int first = s->kind == LAMPS ? pass : 0, last = s->kind == LAMPS ? pass + 1 : s->nlights;
+        ncut = reference_cuts(r, t0, t1, P, cut);
+        sub3(P, r->o, w);
+        delta = dot3(w, r->d);
+        for (c = 0; c < 3; ++c) perp[c] = w[c] - delta * r->d[c];
+        D = sqrt(dot3(perp, perp));
+        if (D < 1e-9 * (t1 - t0)) D = 1e-9 * (t1 - t0);
+        u0 = asinh((t0 - delta) / D);
+        u1 = asinh((t1 - delta) / D);
+        for (c = 0; c < 3; ++c) tau[c] = 0;
+        for (i = 0; i + 1 < ncut; ++i) {
+            double a = cut[i], b = cut[i + 1];
+            double ua = asinh((a - delta) / D), ub = asinh((b - delta) / D);
+            int np = (int)ceil(panels * (ub - ua) / (u1 - u0));
+            if (np < 1) np = 1;
+            for (k = 0; k < np; ++k) {
+                double pa = k == 0 ? a : delta + D * sinh(ua + (ub - ua) * k / np);
+                double pb = k + 1 == np ? b : delta + D * sinh(ua + (ub - ua) * (k + 1) / np);
+                double h = (pb - pa) / 2, st[GL_N][3], ss[GL_N][3], x[GL_N];
+                if (!(pb > pa)) continue;
+                for (j = 0; j < GL_N; ++j) {
+                    x[j] = pa + h * (1 + g->x[j]);
+                    host_sigma(r, x[j], st[j], ss[j]);
+                }
+                for (j = 0; j < GL_N; ++j) {
+                    double tj[3];
+                    for (c = 0; c < 3; ++c) {
+                        double sum = 0;
+                        if (homogeneous(s)) {
+                            tj[c] = s->st[c] * (x[j] - t0);
+                            continue;
+                        }
+                        for (l = 0; l < GL_N; ++l) sum += g->W[j][l] * st[l][c];
+                        tj[c] = tau[c] + h * sum;
+                    }
+                    for (l = first; l < last; ++l) {
+                        hrm_real li[3];
+                        r->lights = 1 << l;
+                        Li(r, (hrm_real)x[j], li);
+                        for (c = 0; c < 3; ++c)
+                            Lk[l][c] += h * g->w[j] * exp(-tj[c]) * ss[j][c] * (double)li[c];
+                    }
+                }
                 for (c = 0; c < 3; ++c) {
                     double sum = 0;
-                    if (s->kind == SHAFTS) {
-                        tj[c] = s->st[c] * (x[j] - t0);
+                    if (homogeneous(s)) {
+                        tau[c] = s->st[c] * (pb - t0);
                         continue;
                     }
-                    for (l = 0; l < GL_N; ++l) sum += g->W[j][l] * st[l][c];
-                    tj[c] = tau[c] + h * sum;
+                    for (j = 0; j < GL_N; ++j) sum += g->w[j] * st[j][c];
+                    tau[c] += h * sum;
                 }
-                for (l = 0; l < s->nlights; ++l) {
-                    hrm_real li[3];
-                    r->lights = 1 << l;
-                    Li(r, (hrm_real)x[j], li);
-                    for (c = 0; c < 3; ++c) Lk[l][c] += h * g->w[j] * exp(-tj[c]) * ss[j][c] * (double)li[c];
-                }
-            }
-            for (c = 0; c < 3; ++c) {
-                double sum = 0;
-                if (s->kind == SHAFTS) {
-                    tau[c] = s->st[c] * (pb - t0);
-                    continue;
-                }
-                for (j = 0; j < GL_N; ++j) sum += g->w[j] * st[j][c];
-                tau[c] += h * sum;
             }
         }
     }
@@ -878,7 +965,10 @@ static void reference_ray(ray *r, double t0, double t1, int panels, double Lk[2]
 /* ======================================================================
    Configurations: what the host asks of hrm per camera ray
    ====================================================================== */
-enum { HRM_RUN, BASE_UNIFORM, BASE_EQUIANGULAR, REFERENCE };
+/* HRM_SHARES: a mixture configuration's solves, one per light, each
+   under the mixture's warp (each light's share of its error; the lamps'
+   per-light table, not costed) */
+enum { HRM_RUN, BASE_UNIFORM, BASE_EQUIANGULAR, REFERENCE, HRM_SHARES };
 
 typedef struct config {
     const char *name;     /* label */
@@ -887,7 +977,10 @@ typedef struct config {
     int warp;             /* 1: equiangular warp towards the point light */
     int breaks;           /* 1: the occluders' shadow edges (and the
                              spot's cone) as breakpoints */
-    int split;            /* 1: one solve per light, each with its warp */
+    int split;            /* 1: one solve per light, each with its warp
+                             (lamps: each lamp alone described to
+                             hrm_light_options; 0: all four, the
+                             mixture warp) */
     int exponential;      /* options.exponential */
     double h_max;         /* Runge-Kutta pairs: the largest step (0: none) */
     int gk_local;         /* Gauss-Kronrod: local mode, 7-point rule */
@@ -899,7 +992,7 @@ typedef struct config {
 static int adaptive(const config *cf)
 {
     hrm_method m = cf->method;
-    return cf->base == HRM_RUN &&
+    return (cf->base == HRM_RUN || cf->base == HRM_SHARES) &&
            (m == HRM_NESTED_SIMPSON || m == HRM_GAUSS_KRONROD || m == HRM_BOGACKI_SHAMPINE ||
             m == HRM_DORMAND_PRINCE || m == HRM_FEHLBERG || m == HRM_CASH_KARP || m == HRM_VERNER);
 }
@@ -975,6 +1068,30 @@ static hrm_status light_plan(const scene *s, const ray *r, double t0, double t1,
     return hrm_light_options(&l, 1, sp, s->nocc, O, D, (hrm_real)t0, (hrm_real)t1, plan, o);
 }
 
+/* The lamps as hrm describes them: lamp `only`, or all of them (-1), to
+   hrm_light_options: the equiangular warp for one, the mixture warp for
+   several. */
+static hrm_status lamps_plan(const scene *s, const ray *r, double t0, double t1, int only,
+                             hrm_ray_plan *plan, hrm_options *o)
+{
+    hrm_light l[MAX_LIGHTS];
+    hrm_real O[3], D[3];
+    int i, k, n = 0;
+    for (k = 0; k < s->nlights; ++k) {
+        if (only >= 0 && k != only) continue;
+        memset(&l[n], 0, sizeof l[n]);
+        l[n].kind = HRM_LIGHT_POINT;
+        l[n].power = (hrm_real)(s->lamp_I[k][0] + s->lamp_I[k][1] + s->lamp_I[k][2]);
+        for (i = 0; i < 3; ++i) l[n].position[i] = (hrm_real)s->lamp[k][i];
+        n++;
+    }
+    for (i = 0; i < 3; ++i) {
+        O[i] = (hrm_real)r->o[i];
+        D[i] = (hrm_real)r->d[i];
+    }
+    return hrm_light_options(l, n, NULL, 0, O, D, (hrm_real)t0, (hrm_real)t1, plan, o);
+}
+
 /* The options of one camera ray for the configuration at rung q. */
 static hrm_options ray_options(const config *cf, double q, uint64_t seed)
 {
@@ -1013,9 +1130,9 @@ typedef struct pixel_out {
     double rgb[3];
     int met;           /* the camera ray meets the medium */
     int nsol;          /* camera solves (or the reference's lights) */
-    double L[2][3];    /* each solve's L */
-    int mask[2];       /* the lights of each solve */
-    hrm_status st[2];  /* each solve's status */
+    double L[MAX_LIGHTS][3]; /* each solve's L */
+    int mask[MAX_LIGHTS];    /* the lights of each solve */
+    hrm_status st[MAX_LIGHTS]; /* each solve's status */
     double tr;         /* Tr of the camera ray (green) */
     long li, traced, lookups, shadow_lookups;
     unsigned warned;   /* bit s: a solve or shadow ray returned status s
@@ -1042,10 +1159,12 @@ static int camera_ray(const scene *s, int x, int y, ray *r, double *t0, double *
     norm3(r->d);
     for (c = 0; c < 3; ++c) behind[c] = 0;
     *t0 = 0;
-    if (s->kind == SHAFTS) {
+    if (homogeneous(s)) {
         /* the ray ends on the wall or on the nearest occluder: both lit
-           diffusely by the point light, shadowed by the other spheres */
+           diffusely by the point light (lamps: each lamp), shadowed by
+           the other spheres */
         double p[3], n[3] = {0, 0, -1}, v[3], dist, cosl;
+        int l;
         *t1 = (s->wall_z - r->o[2]) / r->d[2];
         for (k = 0; k < s->nocc; ++k)
             if (sphere_span(r->o, r->d, s->occ[k].c, s->occ[k].r, &ta, &tb) && ta > 0 && ta < *t1) {
@@ -1055,12 +1174,15 @@ static int camera_ray(const scene *s, int x, int y, ray *r, double *t0, double *
                 norm3(n);
             }
         point_at(r, *t1, p);
-        sub3(s->light, p, v);
-        dist = norm3(v);
-        cosl = dot3(n, v);
-        if (cosl > 0 && !blocked(s, p, v, dist))
-            for (c = 0; c < 3; ++c)
-                behind[c] = s->wall_albedo[c] / PI * s->I[c] * cosl / (dist * dist) * exp(-s->st[c] * dist);
+        for (l = 0; l < s->nlights; ++l) {
+            const double *I = s->kind == LAMPS ? s->lamp_I[l] : s->I;
+            sub3(light_pos(s, l), p, v);
+            dist = norm3(v);
+            cosl = dot3(n, v);
+            if (cosl > 0 && !blocked(s, p, v, dist))
+                for (c = 0; c < 3; ++c)
+                    behind[c] += s->wall_albedo[c] / PI * I[c] * cosl / (dist * dist) * exp(-s->st[c] * dist);
+        }
         return 1;
     }
     if (s->kind == CLOUD) {
@@ -1105,9 +1227,13 @@ static void shade(const scene *s, const config *cf, double q, int x, int y, doub
         reference_ray(&r, t0, t1, (int)q, po->L, Tr);
         po->nsol = s->nlights;
         for (k = 0; k < s->nlights; ++k) po->mask[k] = 1 << k;
-        for (c = 0; c < 3; ++c) po->rgb[c] = po->L[0][c] + po->L[1][c] + Tr[c] * behind[c];
+        for (c = 0; c < 3; ++c) {
+            double sum = 0;
+            for (k = 0; k < MAX_LIGHTS; ++k) sum += po->L[k][c];
+            po->rgb[c] = sum + Tr[c] * behind[c];
+        }
         po->tr = Tr[1];
-    } else if (cf->base != HRM_RUN) {
+    } else if (cf->base != HRM_RUN && cf->base != HRM_SHARES) {
         /* one random offset per pixel (Cycles' way), the same for every
            step */
         double xi = (double)(seed >> 11) * (1.0 / 9007199254740992.0);
@@ -1119,11 +1245,16 @@ static void shade(const scene *s, const config *cf, double q, int x, int y, doub
         } else {
             /* the optical depth from a uniform march of N steps, with the
                sun's light where there is a sun; then the equiangular
-               march for the point or spot light */
-            double Ls[3] = {0, 0, 0};
-            if (s->kind != SHAFTS) march_uniform(&r, t0, t1, N, xi, all & 2, Ls, Tr, scratch);
-            march_equiangular(&r, t0, t1, N, xi, 1, scratch, po->L[0]);
-            if (s->kind == SHAFTS)
+               march for the point or spot light (lamps: one march of N
+               steps per lamp, towards it) */
+            double Ls[3] = {0, 0, 0}, Ll[3];
+            if (!homogeneous(s)) march_uniform(&r, t0, t1, N, xi, all & 2, Ls, Tr, scratch);
+            march_equiangular(&r, t0, t1, N, xi, 1, light_pos(s, 0), scratch, po->L[0]);
+            for (k = 1; k < s->nlights && s->kind == LAMPS; ++k) {
+                march_equiangular(&r, t0, t1, N, xi, 1 << k, light_pos(s, k), scratch, Ll);
+                for (c = 0; c < 3; ++c) po->L[0][c] += Ll[c];
+            }
+            if (homogeneous(s))
                 for (c = 0; c < 3; ++c) Tr[c] = exp(-s->st[c] * (t1 - t0));
             for (c = 0; c < 3; ++c) po->L[0][c] += Ls[c];
         }
@@ -1139,7 +1270,7 @@ static void shade(const scene *s, const config *cf, double q, int x, int y, doub
         memset(&m, 0, sizeof m);
         m.user = &r;
         m.Li = scene_Li(s);
-        if (s->kind == SHAFTS) {
+        if (homogeneous(s)) {
             m.flags = HRM_MEDIUM_HOMOGENEOUS;
             for (c = 0; c < 3; ++c) {
                 m.const_sigma_a[c] = (hrm_real)s->sa[c];
@@ -1152,7 +1283,7 @@ static void shade(const scene *s, const config *cf, double q, int x, int y, doub
             m.sigma = dens_sigma_as;
             m.feature = (hrm_real)s->feature;
         }
-        if (cf->breaks && cf->warp && s->kind != CLOUD) {
+        if (cf->breaks && cf->warp && s->kind != CLOUD && s->kind != LAMPS) {
             /* the light described: its warp and breakpoints from hrm */
             planned = light_plan(s, &r, t0, t1, &plan, &o) == HRM_OK;
         } else if (cf->breaks) {
@@ -1163,7 +1294,7 @@ static void shade(const scene *s, const config *cf, double q, int x, int y, doub
         /* several lights: one solve per light, each with the warp that
            suits it (equiangular for the point light, none for the sun),
            or one solve for all (each Li a shadow ray per light) */
-        po->nsol = cf->split ? s->nlights : 1;
+        po->nsol = cf->split || cf->base == HRM_SHARES ? s->nlights : 1;
         /* the thread's workspace: the camera solve's storage first, its
            shadow rays' in the rest (hrm_workspace_size each) */
         if (hrm_workspace_size(&o) + hrm_workspace_size(&s->shadow) <= WS_BYTES) {
@@ -1175,8 +1306,13 @@ static void shade(const scene *s, const config *cf, double q, int x, int y, doub
         for (k = 0; k < po->nsol; ++k) {
             hrm_options ok = o;
             hrm_status st;
-            r.lights = cf->split ? 1 << k : (1 << s->nlights) - 1;
-            if (cf->warp && (r.lights & 1) && !planned) light_warp(&r, s->light, &ok.warp);
+            r.lights = po->nsol > 1 ? 1 << k : (1 << s->nlights) - 1;
+            if (cf->warp && s->kind == LAMPS) {
+                /* each lamp alone (split), or all of them: the mixture */
+                if (lamps_plan(s, &r, t0, t1, cf->split ? k : -1, &plan, &ok) != HRM_OK) ok.warp = o.warp;
+            } else if (cf->warp && (r.lights & 1) && !planned) {
+                light_warp(&r, s->light, &ok.warp);
+            }
             st = hrm_solve(&m, (hrm_real)t0, (hrm_real)t1, &ok, &res);
             po->warned |= status_bit(st) | status_bit(r.shadow_status);
             po->st[k] = st;
@@ -1203,9 +1339,9 @@ typedef struct frame {
     unsigned char *in;  /* w * h: bit 0, the camera ray meets the medium;
                            bit 1, a solve or shadow ray warned; bit 2, it
                            passes within a pixel's footprint of the light */
-    double *L;          /* w * h * 2 * 3: each camera solve's L */
-    int *st;            /* w * h * 2: its status */
-    unsigned char *mask;/* w * h * 2: its lights (0: no solve) */
+    double *L;          /* w * h * MAX_LIGHTS * 3: each camera solve's L */
+    int *st;            /* w * h * MAX_LIGHTS: its status */
+    unsigned char *mask;/* w * h * MAX_LIGHTS: its lights (0: no solve) */
     double *tr;         /* w * h: Tr of the camera ray (green) */
     long li, traced, lookups; /* over the image */
     long shadow_lookups;      /* of the lookups, the shadow rays' */
@@ -1232,18 +1368,21 @@ static double thread_cpu(void)
 }
 
 /* Whether pixel (x, y)'s ray passes within one pixel's footprint (its
-   angular size times the distance) of the point or spot light. */
+   angular size times the distance) of the point or spot light (a lamp). */
 static int near_light(const scene *s, int x, int y)
 {
     ray r;
     double t0, t1, behind[3], w[3], delta, perp[3];
-    int c;
+    int c, l;
     camera_ray(s, x, y, &r, &t0, &t1, behind);
-    sub3(s->light, r.o, w);
-    delta = dot3(w, r.d);
-    if (delta <= 0) return 0;
-    for (c = 0; c < 3; ++c) perp[c] = w[c] - delta * r.d[c];
-    return sqrt(dot3(perp, perp)) < delta * 2 * s->tan_half / s->h;
+    for (l = 0; l < (s->kind == LAMPS ? s->nlights : 1); ++l) {
+        sub3(light_pos(s, l), r.o, w);
+        delta = dot3(w, r.d);
+        if (delta <= 0) continue;
+        for (c = 0; c < 3; ++c) perp[c] = w[c] - delta * r.d[c];
+        if (sqrt(dot3(perp, perp)) < delta * 2 * s->tan_half / s->h) return 1;
+    }
+    return 0;
 }
 
 static void *worker(void *arg)
@@ -1270,10 +1409,10 @@ static void *worker(void *arg)
             memcpy(f->rgb + 3 * i, po.rgb, sizeof po.rgb);
             f->in[i] = (unsigned char)(po.met | (po.warned ? 2 : 0) | (near_light(j->s, x, y) ? 4 : 0));
             f->tr[i] = po.tr;
-            for (k = 0; k < 2; ++k) {
-                f->mask[2 * i + k] = (unsigned char)(k < po.nsol ? po.mask[k] : 0);
-                f->st[2 * i + k] = po.st[k];
-                memcpy(f->L + 6 * i + 3 * k, po.L[k], sizeof po.L[k]);
+            for (k = 0; k < MAX_LIGHTS; ++k) {
+                f->mask[MAX_LIGHTS * i + k] = (unsigned char)(k < po.nsol ? po.mask[k] : 0);
+                f->st[MAX_LIGHTS * i + k] = po.st[k];
+                memcpy(f->L + 3 * (MAX_LIGHTS * i + k), po.L[k], sizeof po.L[k]);
             }
             j->li += po.li;
             j->traced += po.traced;
@@ -1341,6 +1480,27 @@ static double rel_rmse(const frame *a, const frame *ref, int all_px)
     return den > 0 ? sqrt(num / den) : 0;
 }
 
+/* Light l's relative RMSE: the L of a's solve for light l alone (solve
+   l) against the reference's, over the pixels rel_rmse(a, ref, 0)
+   counts; -1 where a has no such solve. */
+static double light_rmse(const frame *a, const frame *ref, int l)
+{
+    double num = 0, den = 0;
+    size_t i, np = (size_t)ref->w * ref->h;
+    int c;
+    for (i = 0; i < np; ++i) {
+        size_t at = MAX_LIGHTS * i + (size_t)l;
+        if (!(ref->in[i] & 1) || (ref->in[i] & 4)) continue;
+        if (a->mask[at] != 1u << l) return -1;
+        for (c = 0; c < 3; ++c) {
+            double d = a->L[3 * at + (size_t)c] - ref->L[3 * at + (size_t)c];
+            num += d * d;
+            den += ref->L[3 * at + (size_t)c] * ref->L[3 * at + (size_t)c];
+        }
+    }
+    return den > 0 ? sqrt(num / den) : 0;
+}
+
 /* The mean reference pixel over the pixels that meet the medium. */
 static double mean_pixel(const frame *ref)
 {
@@ -1367,14 +1527,14 @@ static void judge(const frame *a, const frame *ref, double rtol, double atol, lo
     for (i = 0; i < np; ++i) {
         int k, l, c, sil = 0, fa = 0;
         if (!(ref->in[i] & 1)) continue;
-        for (k = 0; k < 2; ++k) {
-            int mask = a->mask[2 * i + k], st = a->st[2 * i + k], within = 1, off = 0;
+        for (k = 0; k < MAX_LIGHTS; ++k) {
+            int mask = a->mask[MAX_LIGHTS * i + k], st = a->st[MAX_LIGHTS * i + k], within = 1, off = 0;
             if (!mask) continue;
             for (c = 0; c < 3; ++c) {
                 double want = 0, e;
-                for (l = 0; l < 2; ++l)
-                    if (mask & (1 << l)) want += ref->L[6 * i + 3 * l + c];
-                e = fabs(a->L[6 * i + 3 * k + c] - want);
+                for (l = 0; l < MAX_LIGHTS; ++l)
+                    if (mask & (1 << l)) want += ref->L[3 * (MAX_LIGHTS * i + l) + c];
+                e = fabs(a->L[3 * (MAX_LIGHTS * i + k) + c] - want);
                 if (e > 3 * rtol * fabs(want) + atol) off = 1;
                 if (e > rtol * fabs(want) + atol) within = 0;
             }
@@ -1427,6 +1587,8 @@ typedef struct rung_result {
     double cost[NCOST];  /* per pixel (CPU: seconds for the image) */
     double camera;       /* of the lookups per pixel, the camera rays' */
     long silent, alarms; /* -1: not judged (fixed-step methods) */
+    double light_rmse[MAX_LIGHTS]; /* lamps: each lamp's relative RMSE
+                                      (the mixture's shares), -1: none */
     char warned[96];     /* pixels warned, by status */
 } rung_result;
 
@@ -1566,9 +1728,9 @@ static int frame_alloc(frame *f, const scene *s)
     f->h = s->h;
     f->rgb = (double *)calloc(n * 3, sizeof(double));
     f->in = (unsigned char *)calloc(n, 1);
-    f->L = (double *)calloc(n * 6, sizeof(double));
-    f->st = (int *)calloc(n * 2, sizeof(int));
-    f->mask = (unsigned char *)calloc(n * 2, 1);
+    f->L = (double *)calloc(n * MAX_LIGHTS * 3, sizeof(double));
+    f->st = (int *)calloc(n * MAX_LIGHTS, sizeof(int));
+    f->mask = (unsigned char *)calloc(n * MAX_LIGHTS, 1);
     f->tr = (double *)calloc(n, sizeof(double));
     return f->rgb && f->in && f->L && f->st && f->mask && f->tr;
 }
@@ -1657,21 +1819,85 @@ static void depth_text(const frame *ref, char *buf, size_t n)
     free(tau);
 }
 
+/* y at x on a ladder's points (xs ascending), log-log between the two
+   around x; -1 outside them or where a y is not positive. */
+static double loglog_at(const double *xs, const double *ys, int n, double x)
+{
+    int i;
+    for (i = 0; i + 1 < n; ++i)
+        if (x >= xs[i] && x <= xs[i + 1] && xs[i] > 0 && ys[i] > 0 && ys[i + 1] > 0) {
+            double u = xs[i + 1] > xs[i] ? log(x / xs[i]) / log(xs[i + 1] / xs[i]) : 0;
+            return exp(log(ys[i]) + u * log(ys[i + 1] / ys[i]));
+        }
+    return n > 0 && x == xs[n - 1] && ys[n - 1] > 0 ? ys[n - 1] : -1;
+}
+
+/* The lamps' mixture against one solve per lamp: for each mixture
+   configuration (the warp of all four lamps) and its split partner (the
+   same method, each lamp alone with its own warp), at each rung of the
+   mixture: its image RMSE and each lamp's (its share: the lamp's solve
+   under the mixture's warp), against the partner's at the same traced
+   shadow rays per pixel (log-log between its rungs). */
+static void lamps_table(FILE *out, const scene *s, const ladder *lad, int ncfg)
+{
+    int i, j, k, l;
+    fprintf(out, "\nThe mixture warp against one solve per lamp at equal traced shadow rays (the split's "
+                 "figures log-log between its rungs at the mixture's traced count; - outside its ladder): "
+                 "relative RMSE of the image and of each lamp's light (without the pixels next to a "
+                 "lamp), mixture / split and their ratio.\n\n");
+    fprintf(out, "| configuration | budget | traced / px | image |");
+    for (l = 0; l < s->nlights; ++l) fprintf(out, " lamp %d |", l + 1);
+    fprintf(out, "\n|---|---|---:|---:|");
+    for (l = 0; l < s->nlights; ++l) fprintf(out, "---:|");
+    fprintf(out, "\n");
+    for (i = 0; i < ncfg; ++i) {
+        const ladder *m = &lad[i], *p = NULL;
+        double xs[MAX_RUNGS], ys[MAX_LIGHTS + 1][MAX_RUNGS];
+        char buf[64];
+        if (m->cf->base != HRM_RUN || !m->cf->warp || m->cf->split) continue;
+        for (j = 0; j < ncfg; ++j)
+            if (lad[j].cf->base == HRM_RUN && lad[j].cf->warp && lad[j].cf->split &&
+                lad[j].cf->method == m->cf->method)
+                p = &lad[j];
+        if (!p) continue;
+        for (k = 0; k < p->n; ++k) {
+            xs[k] = p->r[k].cost[C_TRACED];
+            ys[0][k] = p->r[k].rmse[0];
+            for (l = 0; l < s->nlights; ++l) ys[l + 1][k] = p->r[k].light_rmse[l];
+        }
+        for (k = 0; k < m->n; ++k) {
+            const rung_result *r = &m->r[k];
+            double T = r->cost[C_TRACED];
+            fprintf(out, "| %s | %s | %.1f |", m->cf->name, label_of(m->cf, r->q, buf, sizeof buf), T);
+            for (l = 0; l <= s->nlights; ++l) {
+                double mine = l == 0 ? r->rmse[0] : r->light_rmse[l - 1], theirs = loglog_at(xs, ys[l], p->n, T);
+                if (theirs > 0 && mine >= 0)
+                    fprintf(out, " %.2g / %.2g (%.2f) |", mine, theirs, mine / theirs);
+                else
+                    fprintf(out, " %.2g / - |", mine);
+            }
+            fprintf(out, "\n");
+        }
+    }
+}
+
 static int study(const scene *s, const config *cfg, int ncfg, double budget, double exposure,
                  const char *dir, FILE *md)
 {
     static const config refc = {"REFERENCE", REFERENCE, HRM_METHOD_DEFAULT, 0, 0, 0, 0, 0, 0, 0, {0}};
-    frame ref, check, work;
+    frame ref, check, work, shares;
     ladder *lad = (ladder *)calloc((size_t)ncfg, sizeof(ladder));
     tile tiles[16];
     char path[512], buf[64], dbuf[160];
     double agree[2], atol, cpu_budget = -1, refcost[NCOST], chkcost[NCOST];
     long near = 0;
-    int i, k, ok = 1;
+    int i, j, k, ok = 1;
     size_t px;
     image8 im;
 
-    if (!lad || !frame_alloc(&ref, s) || !frame_alloc(&check, s) || !frame_alloc(&work, s)) return 0;
+    if (!lad || !frame_alloc(&ref, s) || !frame_alloc(&check, s) || !frame_alloc(&work, s) ||
+        !frame_alloc(&shares, s))
+        return 0;
     /* the reference at twice the panels, checked against the count */
     render(s, &refc, 2 * s->ref_panels, &ref);
     render(s, &refc, s->ref_panels, &check);
@@ -1721,6 +1947,17 @@ static int study(const scene *s, const config *cfg, int ncfg, double budget, dou
             warned_text(&work, r->warned, sizeof r->warned);
             r->silent = r->alarms = -1;
             if (adaptive(&cfg[i])) judge(&work, &ref, r->q, atol, &r->silent, &r->alarms);
+            for (j = 0; j < MAX_LIGHTS; ++j) r->light_rmse[j] = -1;
+            if (s->kind == LAMPS && cfg[i].base == HRM_RUN && cfg[i].warp) {
+                /* each lamp's error: the split's solves, or the
+                   mixture's shares (rendered apart, not costed) */
+                config sc = cfg[i];
+                if (!cfg[i].split) {
+                    sc.base = HRM_SHARES;
+                    render(s, &sc, r->q, &shares);
+                }
+                for (j = 0; j < s->nlights; ++j) r->light_rmse[j] = light_rmse(cfg[i].split ? &work : &shares, &ref, j);
+            }
             fprintf(md, "| %s | %s | %.1f | %.1f | %.1f (%.1f) | %.3f | %.3g | %.3g | %s |", cfg[i].name,
                     label_of(&cfg[i], r->q, buf, sizeof buf), r->cost[C_LI], r->cost[C_TRACED],
                     r->cost[C_LOOKUPS], r->camera, r->cost[C_CPU], r->rmse[0], r->rmse[1], r->warned);
@@ -1766,6 +2003,10 @@ static int study(const scene *s, const config *cfg, int ncfg, double budget, dou
         equal_rmse_tables(md, lad, ncfg, k);
         equal_rmse_tables(stdout, lad, ncfg, k);
     }
+    if (s->kind == LAMPS) {
+        lamps_table(md, s, lad, ncfg);
+        lamps_table(stdout, s, lad, ncfg);
+    }
 
     /* the sheets: the reference, then each configuration */
     tiles[0].name = "REFERENCE";
@@ -1798,6 +2039,7 @@ static int study(const scene *s, const config *cfg, int ncfg, double budget, dou
     frame_free(&ref);
     frame_free(&check);
     frame_free(&work);
+    frame_free(&shares);
     return ok;
 }
 
@@ -1854,6 +2096,19 @@ int main(int argc, char **argv)
         {"DORMAND-PRINCE WARP BREAKS", HRM_RUN, HRM_DORMAND_PRINCE, 1, 1, 0, 0, 0, 0, RTOL_RUNGS},
         {"NESTED SIMPSON WARP BREAKS", HRM_RUN, HRM_NESTED_SIMPSON, 1, 1, 0, 0, 0, 0, RTOL_RUNGS},
     };
+    /* the lamps: Simpson and nested Simpson with the four lamps described
+       to hrm_light_options at once (the mixture warp, one solve, each Li
+       four shadow rays) and one solve per lamp described alone (its
+       equiangular warp, each Li one shadow ray) */
+    static const config lamps_cfg[] = {
+        {"MARCH UNIFORM", BASE_UNIFORM, HRM_METHOD_DEFAULT, 0, 0, 0, 0, 0, 0, FIXED_RUNGS},
+        {"MARCH EQUIANGULAR", BASE_EQUIANGULAR, HRM_METHOD_DEFAULT, 0, 0, 0, 0, 0, 0, FIXED_RUNGS},
+        {"SIMPSON MIXTURE", HRM_RUN, HRM_SIMPSON, 1, 0, 0, 0, 0, 0, SIMPSON_RUNGS},
+        {"SIMPSON PER LAMP", HRM_RUN, HRM_SIMPSON, 1, 0, 1, 0, 0, 0, SIMPSON_RUNGS},
+        {"NESTED SIMPSON", HRM_RUN, HRM_NESTED_SIMPSON, 0, 0, 0, 0, 0, 0, RTOL_RUNGS},
+        {"NESTED SIMPSON MIXTURE", HRM_RUN, HRM_NESTED_SIMPSON, 1, 0, 0, 0, 0, 0, RTOL_RUNGS},
+        {"NESTED SIMPSON PER LAMP", HRM_RUN, HRM_NESTED_SIMPSON, 1, 0, 1, 0, 0, 0, RTOL_RUNGS},
+    };
     scene s;
     gl_rule gl;
     char path[512];
@@ -1892,6 +2147,11 @@ int main(int argc, char **argv)
         make_smoke(&s, quick);
         s.gl = &gl;
         ok &= study(&s, smoke_cfg, (int)(sizeof smoke_cfg / sizeof smoke_cfg[0]), 32, 3.0, dir, md);
+    }
+    if (strcmp(which, "all") == 0 || strcmp(which, "lamps") == 0) {
+        make_lamps(&s, quick);
+        s.gl = &gl;
+        ok &= study(&s, lamps_cfg, (int)(sizeof lamps_cfg / sizeof lamps_cfg[0]), 32, 1.0, dir, md);
     }
     fclose(md);
     printf("wrote %s/summary.md\n", dir);
