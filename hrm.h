@@ -3884,6 +3884,24 @@ static HRM_DEVICE HRM__CALL void hrm__march(hrm__ctx *c, int N, hrm_real xi, hrm
    half, H/24 (5 f_a + 8 f_m - f_b): fourth order overall, no extra samples.
    tau is nondecreasing, so the midpoint value is kept between its
    neighbours (a thick, sharply varying medium could otherwise overshoot). */
+/* One Simpson panel's parabola against the exact local exponential, added
+   to L: a frame of its own, which a solve without a fit never holds. */
+static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__simpson_fit(hrm__ctx *c, const hrm__pt *a, const hrm__pt *mid,
+                                                                const hrm__pt *b, hrm_real H, hrm_real L[HRM__CH])
+{
+    hrm__pt P3[3];
+    hrm_real out[HRM__CH], mass[HRM__CH], g[HRM__EFIT_MAX][HRM__CH], un[HRM__CH];
+    int i;
+    P3[0] = *a;
+    P3[1] = *mid;
+    P3[2] = *b;
+    hrm__efit_panel(c, &c->ef[0], P3, H / 2, out, mass, g, un);
+    for (i = 0; i < HRM__CH; ++i) {
+        L[i] += out[i];
+        c->unsure[i] += un[i];
+    }
+}
+
 static HRM_DEVICE HRM__CALL void hrm__simpson(hrm__ctx *c, int N, hrm_real L[HRM__CH], hrm_real tau[HRM__CH])
 {
     hrm__pt a, mid, b;
@@ -3900,17 +3918,7 @@ static HRM_DEVICE HRM__CALL void hrm__simpson(hrm__ctx *c, int N, hrm_real L[HRM
         hrm__eval(c, pl + H / 2, &mid);
         hrm__eval(c, pr, &b);
         if (c->expo) {
-            /* the panel's parabola against the exact local exponential */
-            hrm__pt P3[3];
-            hrm_real out[HRM__CH], mass[HRM__CH], g[HRM__EFIT_MAX][HRM__CH], un[HRM__CH];
-            P3[0] = a;
-            P3[1] = mid;
-            P3[2] = b;
-            hrm__efit_panel(c, &c->ef[0], P3, H / 2, out, mass, g, un);
-            for (i = 0; i < HRM__CH; ++i) {
-                L[i] += out[i];
-                c->unsure[i] += un[i];
-            }
+            hrm__simpson_fit(c, &a, &mid, &b, H, L);
             a = b;
             c->stats.steps++;
             if (c->status != HRM_OK) return;

@@ -25,16 +25,19 @@
    counted and printed).
 
    The stack: for each method the smallest cudaLimitStackSize, in 1 KiB
-   steps, at which its image is the one rendered with a 256 KiB stack, bit
-   for bit, with no launch error; a stack overflow is an illegal address
-   that poisons the CUDA context, so each size is tried in a child process
-   (this program run again with --probe). The timed runs use the largest
-   of those minima (or --stack KiB, which skips the search).
+   steps, at which its image is the one rendered with a 64 KiB stack, bit
+   for bit, with no launch error (the driver reserves the stack for every
+   thread the device can hold: 64 KiB is 17 GB on an H100). A stack
+   overflow is an illegal address that poisons the CUDA context, so each
+   size is tried in a child process (this program run again with
+   --probe). The timed runs use the largest of those minima (or --stack
+   KiB, which skips the search).
 
    Prints Mray/s per method on the GPU and on all CPU threads
    (std::thread), the stack set and each method's least stack; writes
    OUT/gpu.png (each method's GPU image and the false-colour difference
-   to the CPU's). Usage: gpu [--out DIR] [--size W H] [--stack KiB]. */
+   to the CPU's). Usage: gpu [--out DIR] [--size W H] [--stack KiB]
+   [--cpu-only] (the CPU's half alone, no CUDA call). */
 #define HRM_IMPLEMENTATION
 #include "hrm.h"
 #include "png.h"
@@ -49,10 +52,11 @@
 #include <thread>
 #include <vector>
 
-#define PROBE_STACK_KIB 256 /* the stack the probes' reference image gets */
+#define PROBE_STACK_KIB 64 /* the stack of the probes' reference image */
 
 struct scene {
     double light[3], I; /* point light: position, intensity */
+    double colour[HRM_CHANNELS]; /* the light's, relative */
     double sigma0;      /* extinction scale (1/length) */
     double albedo;
     double tint[HRM_CHANNELS]; /* extinction per channel relative */
@@ -82,7 +86,9 @@ struct ray_ctx {
     double o[3], d[3];
 };
 
-/* The fog's density at p: smooth, in [0.2, 1] times sigma0. */
+/* The fog's density at p: smooth, in [0.2, 1] times sigma0 (as smooth
+   along a ray as the issue's probe: about 27 evaluations a ray at rtol
+   1e-3). */
 static HRM_DEVICE double density(const scene *s, const double p[3])
 {
     return s->sigma0 * (0.6 + 0.4 * sin(1.3 * p[0] + 0.5) * sin(1.1 * p[1] + 0.2) * cos(0.9 * p[2]));
@@ -102,8 +108,8 @@ static HRM_DEVICE void fog_sigma(void *user, hrm_real t, hrm_real sa[HRM_CHANNEL
     }
 }
 
-/* In-scattered radiance toward the camera: the light through the fog's
-   mean extinction (0.6 sigma0 a channel), isotropic phase. */
+/* In-scattered radiance toward the camera: the light through an
+   extinction of 0.6 sigma0 a channel, isotropic phase. */
 static HRM_DEVICE void fog_li(void *user, hrm_real t, hrm_real out[HRM_CHANNELS])
 {
     const ray_ctx *r = (const ray_ctx *)user;
@@ -115,7 +121,8 @@ static HRM_DEVICE void fog_li(void *user, hrm_real t, hrm_real out[HRM_CHANNELS]
         r2 += v * v;
     }
     for (i = 0; i < HRM_CHANNELS; ++i)
-        out[i] = (hrm_real)(s->I * exp(-0.6 * s->sigma0 * s->tint[i] * sqrt(r2)) / r2 / (4 * 3.14159265358979));
+        out[i] = (hrm_real)(s->I * s->colour[i] * exp(-0.6 * s->sigma0 * s->tint[i] * sqrt(r2)) / r2 /
+                            (4 * 3.14159265358979));
 }
 
 /* One pixel, on either side: the camera at the origin looking along +z,
@@ -313,8 +320,8 @@ static unsigned long long run_probe(const char *self, const scene &s, int m, int
 }
 
 /* The smallest stack (KiB) at which method m renders the image of the
-   256 KiB stack: a bisection, a stack that suffices staying sufficient.
-   -1 if even 256 KiB fails. */
+   PROBE_STACK_KIB stack: a bisection, a stack that suffices staying
+   sufficient. -1 if even PROBE_STACK_KIB fails. */
 static int least_stack(const char *self, const scene &s, int m, const char *dir)
 {
     unsigned long long ref = run_probe(self, s, m, PROBE_STACK_KIB, dir);
@@ -338,30 +345,63 @@ static void to_image8(const scene &s, const image &im, image8 *out)
         }
 }
 
+/* --cpu-only: the CPU's half alone (no CUDA call), each method's Mray/s,
+   evaluations a ray and statuses; 1 if a solve fails. */
+static int cpu_report(const scene &s)
+{
+    long npix = (long)s.w * s.h;
+    int fail = 0;
+    std::printf("%d x %d pixels on %u CPU threads\n", s.w, s.h, std::thread::hardware_concurrency());
+    for (int m = 0; m < NMETHODS; ++m) {
+        image c;
+        long ev = 0, warn = 0, err = 0;
+        double sum = 0;
+        render_cpu(s, methods[m], &c);
+        for (long p = 0; p < npix; ++p) {
+            ev += c.evals[(size_t)p];
+            warn += c.status[(size_t)p] > 0;
+            err += c.status[(size_t)p] < 0;
+            sum += (double)c.rgb[(size_t)p * HRM_CHANNELS];
+        }
+        fail |= err > 0;
+        std::printf("%-20s %8.3f Mray/s %8.1f evals/ray, workspace %6zu bytes, mean pixel %.6f, %ld warnings, %ld errors\n",
+                    methods[m].label, npix / c.seconds * 1e-6, (double)ev / npix, ws_size(&methods[m]), sum / npix,
+                    warn, err);
+    }
+    return fail;
+}
+
 int main(int argc, char **argv)
 {
-    scene s = {{0.4, 0.5, 4.0}, 20.0, 0.35, 0.8, {1.0, 0.85, 0.7}, 8.0, 0.05, 0.6, 1024, 1024};
+    scene s = {{0.4, 0.5, 4.0}, 20.0, {0}, 0.35, 0.8, {0}, 8.0, 0.05, 0.6, 1024, 1024};
     const char *outdir = "build/gpu", *self = argv[0];
-    int stack = -1, least[NMETHODS], fail = 0, ndev = 0, i, m;
+    int stack = -1, least[NMETHODS], fail = 0, ndev = 0, cpu_only = 0, i, m;
     double fixed_bound = sizeof(hrm_real) == sizeof(float) ? 5e-4 : 1e-12;
     image8 sheet;
     unsigned char white[3] = {255, 255, 255};
     char path[2048];
     cudaDeviceProp prop;
+    for (i = 0; i < HRM_CHANNELS; ++i) { /* a warm light; blue scattered the most */
+        double x = HRM_CHANNELS > 1 ? (double)i / (HRM_CHANNELS - 1) : 0;
+        s.colour[i] = 1 - 0.45 * x;
+        s.tint[i] = 0.7 + 0.3 * x;
+    }
     for (i = 1; i < argc; ++i) {
         if (!std::strcmp(argv[i], "--out") && i + 1 < argc) outdir = argv[++i];
         else if (!std::strcmp(argv[i], "--size") && i + 2 < argc) {
             s.w = std::atoi(argv[++i]);
             s.h = std::atoi(argv[++i]);
         } else if (!std::strcmp(argv[i], "--stack") && i + 1 < argc) stack = std::atoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--cpu-only")) cpu_only = 1;
         else if (!std::strcmp(argv[i], "--probe") && i + 3 < argc)
             return probe(s, std::atoi(argv[i + 1]), std::atoi(argv[i + 2]), argv[i + 3]);
         else {
-            std::fprintf(stderr, "usage: %s [--out DIR] [--size W H] [--stack KiB]\n", argv[0]);
+            std::fprintf(stderr, "usage: %s [--out DIR] [--size W H] [--stack KiB] [--cpu-only]\n", argv[0]);
             return 2;
         }
     }
     if (s.w < 1 || s.h < 1) return 2;
+    if (cpu_only) return cpu_report(s);
     if (cudaGetDeviceCount(&ndev) != cudaSuccess || ndev == 0) {
         std::printf("gpu: no CUDA device here; nothing run (the build is what make test checks)\n");
         return 0;
