@@ -28,11 +28,17 @@
 #                examples/results/ (the overview sheets and summary.md); on
 #                request, then commit
 #   make examples
+#   make gpu     examples/gpu.cu (nvcc, sm_90 and sm_75): a fog and a point
+#                light rendered by hrm_solve in a CUDA kernel, one thread a
+#                pixel, against all CPU threads (Mray/s, the images compared,
+#                each method's least per-thread stack) where a GPU is; one
+#                line and success without nvcc or a GPU. make test compiles
+#                it wherever nvcc is found (make gpu-build)
 CC      ?= cc
 WARN    = -Wall -Wextra -pedantic -Werror -Wshadow -Wdouble-promotion
 BUILD   = build
 
-.PHONY: all test check bench bench-quick bench-snapshot render render-quick render-snapshot examples fuzz clean
+.PHONY: all test check bench bench-quick bench-snapshot render render-quick render-snapshot examples gpu gpu-build fuzz clean
 
 all: test
 
@@ -126,6 +132,26 @@ render-snapshot: render
 	    render/out/summary.md examples/results/
 
 examples: $(BUILD)/example_ray $(BUILD)/example_render
+
+# The CUDA example: nvcc from $CUDA_HOME/bin, else from PATH. Two
+# architectures (Hopper, and Turing: the oldest CUDA 13 keeps), both
+# compiled at once; warnings as errors, nvcc's and the host compiler's.
+NVCC ?= $(or $(if $(CUDA_HOME),$(wildcard $(CUDA_HOME)/bin/nvcc)),$(shell command -v nvcc 2>/dev/null))
+GPU_ARCH = -gencode arch=compute_90,code=sm_90 -gencode arch=compute_75,code=sm_75
+NVFLAGS = -O2 --threads 2 -Werror all-warnings -Xcompiler -Wall,-Wextra,-Werror
+
+$(BUILD)/example_gpu: examples/gpu.cu examples/png.h hrm.h
+	@mkdir -p $(BUILD)
+	$(NVCC) $(NVFLAGS) $(GPU_ARCH) -I. examples/gpu.cu -o $@
+
+gpu-build:
+	@if [ -z "$(NVCC)" ]; then \
+	    echo "gpu: skipped, no nvcc (neither \$$CUDA_HOME/bin/nvcc nor nvcc on PATH)"; \
+	else $(MAKE) --no-print-directory $(BUILD)/example_gpu; fi
+
+# build/gpu/ holds its picture (gpu.png) and the stack search's scratch file
+gpu: gpu-build
+	@if [ -n "$(NVCC)" ]; then mkdir -p $(BUILD)/gpu && ./$(BUILD)/example_gpu --out $(BUILD)/gpu; fi
 
 clean:
 	rm -rf $(BUILD)

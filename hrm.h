@@ -81,13 +81,11 @@
    tau    optical depth from t0, the integral of sigma_t; Tr = exp(-tau), the
           result's Tr is Tr(t0, t1).
    Le     emitted radiance: the source is sigma_a Le (Munoz 2014 eq. 1,
-          pbrt-v4), or Le itself with HRM_EMISSION_PER_LENGTH (pbrt-v2,
-          Cycles).
+          pbrt-v4), or Le with HRM_EMISSION_PER_LENGTH (pbrt-v2, Cycles).
    Li     in-scattered radiance toward the camera, phase function and the
           light's transmittance applied: the host's (shadow rays, ...).
    S      the source sigma_a Le + sigma_s Li. L = integral over [t0, t1] of
-          Tr(t0, t) S(t), the radiance the medium adds; the host composes
-          L + Tr L_surface.
+          Tr(t0, t) S(t), the medium's radiance: pixel = L + Tr L_surface.
    evaluation   one call of the source (Le and/or Li) at one abscissa, at
           most once per abscissa: the cost that matters (each Li is a
           shadow ray), hrm_stats.evals. A medium evaluation (sigma or
@@ -101,9 +99,8 @@
      sigma             both coefficients from one call (one density
                        lookup); with any of the three above:
                        HRM_ERR_BAD_MEDIUM.
-     Le, Li            NULL: no emission, no scattering; never called where
-                       sigma_a (Le, unless per length) or sigma_s (Li) is 0
-                       in every channel.
+     Le, Li            NULL: absent; never called where sigma_a (Le, unless
+                       per length) or sigma_s (Li) is 0 in every channel.
      transmittance     closed-form Tr(ta, tb) of the eye ray; NULL: hrm
                        integrates sigma_t (TRANSMITTANCE).
    flags |= HRM_MEDIUM_HOMOGENEOUS with const_sigma_a / const_sigma_s: the
@@ -273,10 +270,14 @@
    nested Simpson 120; the shadow-ray estimator 8; about 2.2 times that with
    8 channels, half in float, at most (48 + 48 HRM_CHANNELS) KiB; twice
    with a shadow ray solved inside Li. options.workspace (the caller's
-   hrm_workspace_size bytes, aligned to 16: per thread, or per GPU thread)
-   holds the layer and the adaptive storage instead: every method at most
-   21 KiB of stack, 38 with a shadow ray in the workspace's rest; the
-   answers the same, bit for bit.
+   hrm_workspace_size bytes, aligned to 16, one a thread) holds the layer
+   and the adaptive storage instead: every method at most 21 KiB of stack,
+   38 with a shadow ray in the workspace's rest; bit-identical answers.
+   GPU kernels: under nvcc or hipcc every function is __host__ __device__
+   (HRM_DEVICE; define it to override) and the tables exist on both sides.
+   Build the medium in the kernel (callbacks: device functions), give each
+   thread a device slice as options.workspace, raise cudaLimitStackSize
+   (make gpu prints each method's least); float on consumer GPUs (README).
 
    ==========================================================================
    ARCHITECTURE
@@ -305,9 +306,8 @@
    HRM_RK4              4      2N + 1
    HRM_ADAMS_BASHFORTH  4      N + 3           4-step, RK4 start (N >= 4)
    HRM_ANALYTIC_MARCH   2 (1)  N               Hillaire 2015: extinction
-                                               exact over each step in t,
-                                               S/sigma_t held (under the
-                                               equiangular warp S dt/du);
+                                               exact a step in t, S/sigma_t
+                                               held (equiangular: S dt/du);
                                                0 <= L <= sup(S/sigma_t)(1-Tr)
    HRM_NESTED_SIMPSON   6      4 a split       Lyness: Simpson on halves vs
                                                whole, Richardson-corrected;
@@ -506,6 +506,15 @@ HRM__STATIC_ASSERT(max_lights_1_to_64, HRM_MAX_LIGHTS >= 1 && HRM_MAX_LIGHTS <= 
 #define HRM_API static
 #else
 #define HRM_API extern
+#endif
+/* On every function: callable from CPU threads and from GPU kernels alike
+   (pbrt-v4's PBRT_CPU_GPU). */
+#ifndef HRM_DEVICE
+#if defined(__CUDACC__) || defined(__HIPCC__)
+#define HRM_DEVICE __host__ __device__
+#else
+#define HRM_DEVICE
+#endif
 #endif
 
 #ifdef __cplusplus
@@ -809,13 +818,13 @@ typedef struct hrm_result {
 
 /* The defaults of `method`: what an all-zero hrm_options means, with the
    method set. */
-HRM_API hrm_options hrm_default_options(hrm_method method);
+HRM_API HRM_DEVICE hrm_options hrm_default_options(hrm_method method);
 
 /* The bytes options.workspace must hold for a solve with these options
    (options NULL: the defaults'; 0 for options hrm_solve would reject): the
    transmittance layer, and the adaptive methods' memo, fits, intervals,
    samples and finish. A multiple of 16. */
-HRM_API size_t hrm_workspace_size(const hrm_options *options);
+HRM_API HRM_DEVICE size_t hrm_workspace_size(const hrm_options *options);
 
 /* Solve along one ray from t0 to t1 (t0 <= t1, both finite).
    medium, result: required.  options: NULL means all defaults.
@@ -827,7 +836,7 @@ HRM_API size_t hrm_workspace_size(const hrm_options *options);
    part solved. With sigma callbacks the cut-off is not applied.
    Returns HRM_OK, a warning (result holds the best estimate) or an error
    (result holds L = 0, Tr = 1, and the stats counted so far). */
-HRM_API hrm_status hrm_solve(const hrm_medium *medium, hrm_real t0, hrm_real t1,
+HRM_API HRM_DEVICE hrm_status hrm_solve(const hrm_medium *medium, hrm_real t0, hrm_real t1,
                              const hrm_options *options, hrm_result *result);
 
 /* Eye-ray (or shadow-ray) transmittance Tr(t0, t1) alone: no source is
@@ -839,7 +848,7 @@ HRM_API hrm_status hrm_solve(const hrm_medium *medium, hrm_real t0, hrm_real t1,
    nodes). options->warp is used only to end an infinite ray.
    Tr: required. stats: optional. On error Tr is 1 in every channel and
    stats, where given, holds what was counted (zero for a NULL Tr). */
-HRM_API hrm_status hrm_transmittance(const hrm_medium *medium, hrm_real t0,
+HRM_API HRM_DEVICE hrm_status hrm_transmittance(const hrm_medium *medium, hrm_real t0,
                                      hrm_real t1, const hrm_options *options,
                                      hrm_real Tr[HRM_CHANNELS], hrm_stats *stats);
 
@@ -850,7 +859,7 @@ HRM_API hrm_status hrm_transmittance(const hrm_medium *medium, hrm_real t0,
    Returns HRM_ERR_NULL_ARGUMENT, HRM_ERR_BAD_WARP (dir zero or a value not
    finite; *warp is then zeroed, HRM_WARP_NONE, wherever warp is given) or
    HRM_OK. */
-HRM_API hrm_status hrm_equiangular_warp(const hrm_real origin[3], const hrm_real dir[3],
+HRM_API HRM_DEVICE hrm_status hrm_equiangular_warp(const hrm_real origin[3], const hrm_real dir[3],
                                         const hrm_real light[3], hrm_warp *warp);
 
 /* Breakpoints of one spherical occluder (center, radius) in front of a
@@ -869,7 +878,7 @@ HRM_API hrm_status hrm_equiangular_warp(const hrm_real origin[3], const hrm_real
    wherever count is given)
    or HRM_OK; a light inside the sphere, which shadows the whole ray, gives
    no breakpoint. */
-HRM_API hrm_status hrm_sphere_breaks(const hrm_real origin[3], const hrm_real dir[3],
+HRM_API HRM_DEVICE hrm_status hrm_sphere_breaks(const hrm_real origin[3], const hrm_real dir[3],
                                      const hrm_real light[3], const hrm_real center[3],
                                      hrm_real radius, hrm_real t0, hrm_real t1,
                                      hrm_real out[2], int *count);
@@ -932,14 +941,14 @@ typedef struct hrm_ray_plan {
    length), HRM_ERR_SINGULAR (a point or spot
    light on the ray within [t0, t1]) with *plan zeroed and *options as it
    was; else HRM_OK. */
-HRM_API hrm_status hrm_light_options(const hrm_light *lights, int nlights, const hrm_sphere *spheres,
+HRM_API HRM_DEVICE hrm_status hrm_light_options(const hrm_light *lights, int nlights, const hrm_sphere *spheres,
                                      int nspheres, const hrm_real origin[3], const hrm_real dir[3],
                                      hrm_real t0, hrm_real t1, hrm_ray_plan *plan, hrm_options *options);
 
-HRM_API const char *hrm_method_name(hrm_method method); /* "?" if unknown */
-HRM_API const char *hrm_status_string(hrm_status status); /* "unknown status" */
+HRM_API HRM_DEVICE const char *hrm_method_name(hrm_method method); /* "?" if unknown */
+HRM_API HRM_DEVICE const char *hrm_status_string(hrm_status status); /* "unknown status" */
 /* HRM_VERSION_MAJOR*10000 + MINOR*100 + PATCH of the compiled library. */
-HRM_API int hrm_version(void);
+HRM_API HRM_DEVICE int hrm_version(void);
 
 #ifdef __cplusplus
 }
@@ -979,6 +988,23 @@ HRM_API int hrm_version(void);
 #define HRM__NOINLINE __declspec(noinline)
 #else
 #define HRM__NOINLINE
+#endif
+
+/* On a GPU the large functions stay calls: inlined whole into a kernel,
+   they take ptxas minutes per kernel and registers from every thread. */
+#if defined(__CUDACC__) || defined(__HIPCC__)
+#define HRM__CALL __noinline__
+#else
+#define HRM__CALL
+#endif
+
+/* The coefficient tables live in device memory in the device pass of
+   nvcc or hipcc and in the host's in its host pass, so that a function on
+   both sides reads its own copy. */
+#if defined(__CUDA_ARCH__) || defined(__HIP_DEVICE_COMPILE__)
+#define HRM__TABLE __device__
+#else
+#define HRM__TABLE
 #endif
 
 /* Internal limits (fixed storage: no allocation in a solve). */
@@ -1094,36 +1120,36 @@ typedef struct hrm__tableau {
 } hrm__tableau;
 
 /* Euler (1768). */
-static const hrm_real hrm__euler_a[] = {0};
-static const hrm_real hrm__euler_b[] = {1};
-static const hrm_real hrm__euler_c[] = {0};
-static const hrm__tableau hrm__euler = {1, 1, hrm__euler_a, hrm__euler_b, hrm__euler_c, 0, 0};
+static HRM__TABLE const hrm_real hrm__euler_a[] = {0};
+static HRM__TABLE const hrm_real hrm__euler_b[] = {1};
+static HRM__TABLE const hrm_real hrm__euler_c[] = {0};
+static HRM__TABLE const hrm__tableau hrm__euler = {1, 1, hrm__euler_a, hrm__euler_b, hrm__euler_c, 0, 0};
 
 /* Classical Runge-Kutta (Kutta 1901). */
-static const hrm_real hrm__rk4_a[] = {
+static HRM__TABLE const hrm_real hrm__rk4_a[] = {
     0, 0, 0, 0,
     HRM__R(0.5), 0, 0, 0,
     0, HRM__R(0.5), 0, 0,
     0, 0, 1, 0};
-static const hrm_real hrm__rk4_b[] = {HRM__R(1.0 / 6), HRM__R(1.0 / 3), HRM__R(1.0 / 3), HRM__R(1.0 / 6)};
-static const hrm_real hrm__rk4_c[] = {0, HRM__R(0.5), HRM__R(0.5), 1};
-static const hrm__tableau hrm__rk4 = {4, 4, hrm__rk4_a, hrm__rk4_b, hrm__rk4_c, 0, 0};
+static HRM__TABLE const hrm_real hrm__rk4_b[] = {HRM__R(1.0 / 6), HRM__R(1.0 / 3), HRM__R(1.0 / 3), HRM__R(1.0 / 6)};
+static HRM__TABLE const hrm_real hrm__rk4_c[] = {0, HRM__R(0.5), HRM__R(0.5), 1};
+static HRM__TABLE const hrm__tableau hrm__rk4 = {4, 4, hrm__rk4_a, hrm__rk4_b, hrm__rk4_c, 0, 0};
 
 /* Adams-Bashforth 4-step (Bashforth & Adams 1883), newest value first. */
-static const hrm_real hrm__ab4_beta[4] = {HRM__R(55.0 / 24), HRM__R(-59.0 / 24), HRM__R(37.0 / 24), HRM__R(-9.0 / 24)};
+static HRM__TABLE const hrm_real hrm__ab4_beta[4] = {HRM__R(55.0 / 24), HRM__R(-59.0 / 24), HRM__R(37.0 / 24), HRM__R(-9.0 / 24)};
 
 /* Bogacki & Shampine 1989, 3(2), first same as last. */
-static const hrm_real hrm__bs_a[] = {
+static HRM__TABLE const hrm_real hrm__bs_a[] = {
     0, 0, 0, 0,
     HRM__R(1.0 / 2), 0, 0, 0,
     0, HRM__R(3.0 / 4), 0, 0,
     HRM__R(2.0 / 9), HRM__R(1.0 / 3), HRM__R(4.0 / 9), 0};
-static const hrm_real hrm__bs_b[] = {HRM__R(2.0 / 9), HRM__R(1.0 / 3), HRM__R(4.0 / 9), 0};
-static const hrm_real hrm__bs_bh[] = {HRM__R(7.0 / 24), HRM__R(1.0 / 4), HRM__R(1.0 / 3), HRM__R(1.0 / 8)};
-static const hrm_real hrm__bs_c[] = {0, HRM__R(1.0 / 2), HRM__R(3.0 / 4), 1};
+static HRM__TABLE const hrm_real hrm__bs_b[] = {HRM__R(2.0 / 9), HRM__R(1.0 / 3), HRM__R(4.0 / 9), 0};
+static HRM__TABLE const hrm_real hrm__bs_bh[] = {HRM__R(7.0 / 24), HRM__R(1.0 / 4), HRM__R(1.0 / 3), HRM__R(1.0 / 8)};
+static HRM__TABLE const hrm_real hrm__bs_c[] = {0, HRM__R(1.0 / 2), HRM__R(3.0 / 4), 1};
 
 /* Dormand & Prince 1980, 5(4), first same as last. */
-static const hrm_real hrm__dp_a[] = {
+static HRM__TABLE const hrm_real hrm__dp_a[] = {
     0, 0, 0, 0, 0, 0, 0,
     HRM__R(1.0 / 5), 0, 0, 0, 0, 0, 0,
     HRM__R(3.0 / 40), HRM__R(9.0 / 40), 0, 0, 0, 0, 0,
@@ -1131,40 +1157,40 @@ static const hrm_real hrm__dp_a[] = {
     HRM__R(19372.0 / 6561), HRM__R(-25360.0 / 2187), HRM__R(64448.0 / 6561), HRM__R(-212.0 / 729), 0, 0, 0,
     HRM__R(9017.0 / 3168), HRM__R(-355.0 / 33), HRM__R(46732.0 / 5247), HRM__R(49.0 / 176), HRM__R(-5103.0 / 18656), 0, 0,
     HRM__R(35.0 / 384), 0, HRM__R(500.0 / 1113), HRM__R(125.0 / 192), HRM__R(-2187.0 / 6784), HRM__R(11.0 / 84), 0};
-static const hrm_real hrm__dp_b[] = {HRM__R(35.0 / 384), 0, HRM__R(500.0 / 1113), HRM__R(125.0 / 192),
+static HRM__TABLE const hrm_real hrm__dp_b[] = {HRM__R(35.0 / 384), 0, HRM__R(500.0 / 1113), HRM__R(125.0 / 192),
                                      HRM__R(-2187.0 / 6784), HRM__R(11.0 / 84), 0};
-static const hrm_real hrm__dp_bh[] = {HRM__R(5179.0 / 57600), 0, HRM__R(7571.0 / 16695), HRM__R(393.0 / 640),
+static HRM__TABLE const hrm_real hrm__dp_bh[] = {HRM__R(5179.0 / 57600), 0, HRM__R(7571.0 / 16695), HRM__R(393.0 / 640),
                                       HRM__R(-92097.0 / 339200), HRM__R(187.0 / 2100), HRM__R(1.0 / 40)};
-static const hrm_real hrm__dp_c[] = {0, HRM__R(1.0 / 5), HRM__R(3.0 / 10), HRM__R(4.0 / 5), HRM__R(8.0 / 9), 1, 1};
+static HRM__TABLE const hrm_real hrm__dp_c[] = {0, HRM__R(1.0 / 5), HRM__R(3.0 / 10), HRM__R(4.0 / 5), HRM__R(8.0 / 9), 1, 1};
 
 /* Fehlberg 1969, 4(5): the fourth-order solution is propagated. */
-static const hrm_real hrm__rkf_a[] = {
+static HRM__TABLE const hrm_real hrm__rkf_a[] = {
     0, 0, 0, 0, 0, 0,
     HRM__R(1.0 / 4), 0, 0, 0, 0, 0,
     HRM__R(3.0 / 32), HRM__R(9.0 / 32), 0, 0, 0, 0,
     HRM__R(1932.0 / 2197), HRM__R(-7200.0 / 2197), HRM__R(7296.0 / 2197), 0, 0, 0,
     HRM__R(439.0 / 216), -8, HRM__R(3680.0 / 513), HRM__R(-845.0 / 4104), 0, 0,
     HRM__R(-8.0 / 27), 2, HRM__R(-3544.0 / 2565), HRM__R(1859.0 / 4104), HRM__R(-11.0 / 40), 0};
-static const hrm_real hrm__rkf_b[] = {HRM__R(25.0 / 216), 0, HRM__R(1408.0 / 2565), HRM__R(2197.0 / 4104), HRM__R(-1.0 / 5), 0};
-static const hrm_real hrm__rkf_bh[] = {HRM__R(16.0 / 135), 0, HRM__R(6656.0 / 12825), HRM__R(28561.0 / 56430),
+static HRM__TABLE const hrm_real hrm__rkf_b[] = {HRM__R(25.0 / 216), 0, HRM__R(1408.0 / 2565), HRM__R(2197.0 / 4104), HRM__R(-1.0 / 5), 0};
+static HRM__TABLE const hrm_real hrm__rkf_bh[] = {HRM__R(16.0 / 135), 0, HRM__R(6656.0 / 12825), HRM__R(28561.0 / 56430),
                                        HRM__R(-9.0 / 50), HRM__R(2.0 / 55)};
-static const hrm_real hrm__rkf_c[] = {0, HRM__R(1.0 / 4), HRM__R(3.0 / 8), HRM__R(12.0 / 13), 1, HRM__R(1.0 / 2)};
+static HRM__TABLE const hrm_real hrm__rkf_c[] = {0, HRM__R(1.0 / 4), HRM__R(3.0 / 8), HRM__R(12.0 / 13), 1, HRM__R(1.0 / 2)};
 
 /* Cash & Karp 1990, 4(5): the fourth-order solution is propagated. */
-static const hrm_real hrm__ck_a[] = {
+static HRM__TABLE const hrm_real hrm__ck_a[] = {
     0, 0, 0, 0, 0, 0,
     HRM__R(1.0 / 5), 0, 0, 0, 0, 0,
     HRM__R(3.0 / 40), HRM__R(9.0 / 40), 0, 0, 0, 0,
     HRM__R(3.0 / 10), HRM__R(-9.0 / 10), HRM__R(6.0 / 5), 0, 0, 0,
     HRM__R(-11.0 / 54), HRM__R(5.0 / 2), HRM__R(-70.0 / 27), HRM__R(35.0 / 27), 0, 0,
     HRM__R(1631.0 / 55296), HRM__R(175.0 / 512), HRM__R(575.0 / 13824), HRM__R(44275.0 / 110592), HRM__R(253.0 / 4096), 0};
-static const hrm_real hrm__ck_b[] = {HRM__R(2825.0 / 27648), 0, HRM__R(18575.0 / 48384), HRM__R(13525.0 / 55296),
+static HRM__TABLE const hrm_real hrm__ck_b[] = {HRM__R(2825.0 / 27648), 0, HRM__R(18575.0 / 48384), HRM__R(13525.0 / 55296),
                                      HRM__R(277.0 / 14336), HRM__R(1.0 / 4)};
-static const hrm_real hrm__ck_bh[] = {HRM__R(37.0 / 378), 0, HRM__R(250.0 / 621), HRM__R(125.0 / 594), 0, HRM__R(512.0 / 1771)};
-static const hrm_real hrm__ck_c[] = {0, HRM__R(1.0 / 5), HRM__R(3.0 / 10), HRM__R(3.0 / 5), 1, HRM__R(7.0 / 8)};
+static HRM__TABLE const hrm_real hrm__ck_bh[] = {HRM__R(37.0 / 378), 0, HRM__R(250.0 / 621), HRM__R(125.0 / 594), 0, HRM__R(512.0 / 1771)};
+static HRM__TABLE const hrm_real hrm__ck_c[] = {0, HRM__R(1.0 / 5), HRM__R(3.0 / 10), HRM__R(3.0 / 5), 1, HRM__R(7.0 / 8)};
 
 /* Verner 1978, 6(5), the pair of DVERK (Hull, Enright & Jackson 1976). */
-static const hrm_real hrm__vr_a[] = {
+static HRM__TABLE const hrm_real hrm__vr_a[] = {
     0, 0, 0, 0, 0, 0, 0, 0,
     HRM__R(1.0 / 6), 0, 0, 0, 0, 0, 0, 0,
     HRM__R(4.0 / 75), HRM__R(16.0 / 75), 0, 0, 0, 0, 0, 0,
@@ -1174,34 +1200,34 @@ static const hrm_real hrm__vr_a[] = {
     HRM__R(-8263.0 / 15000), HRM__R(124.0 / 75), HRM__R(-643.0 / 680), HRM__R(-81.0 / 250), HRM__R(2484.0 / 10625), 0, 0, 0,
     HRM__R(3501.0 / 1720), HRM__R(-300.0 / 43), HRM__R(297275.0 / 52632), HRM__R(-319.0 / 2322), HRM__R(24068.0 / 84065), 0,
     HRM__R(3850.0 / 26703), 0};
-static const hrm_real hrm__vr_b[] = {HRM__R(3.0 / 40), 0, HRM__R(875.0 / 2244), HRM__R(23.0 / 72), HRM__R(264.0 / 1955), 0,
+static HRM__TABLE const hrm_real hrm__vr_b[] = {HRM__R(3.0 / 40), 0, HRM__R(875.0 / 2244), HRM__R(23.0 / 72), HRM__R(264.0 / 1955), 0,
                                      HRM__R(125.0 / 11592), HRM__R(43.0 / 616)};
-static const hrm_real hrm__vr_bh[] = {HRM__R(13.0 / 160), 0, HRM__R(2375.0 / 5984), HRM__R(5.0 / 16), HRM__R(12.0 / 85),
+static HRM__TABLE const hrm_real hrm__vr_bh[] = {HRM__R(13.0 / 160), 0, HRM__R(2375.0 / 5984), HRM__R(5.0 / 16), HRM__R(12.0 / 85),
                                       HRM__R(3.0 / 44), 0, 0};
-static const hrm_real hrm__vr_c[] = {0, HRM__R(1.0 / 6), HRM__R(4.0 / 15), HRM__R(2.0 / 3), HRM__R(5.0 / 6), 1, HRM__R(1.0 / 15), 1};
+static HRM__TABLE const hrm_real hrm__vr_c[] = {0, HRM__R(1.0 / 6), HRM__R(4.0 / 15), HRM__R(2.0 / 3), HRM__R(5.0 / 6), 1, HRM__R(1.0 / 15), 1};
 
-static const hrm__tableau hrm__bs = {4, 3, hrm__bs_a, hrm__bs_b, hrm__bs_c, hrm__bs_bh, 2};
-static const hrm__tableau hrm__dp = {7, 5, hrm__dp_a, hrm__dp_b, hrm__dp_c, hrm__dp_bh, 4};
-static const hrm__tableau hrm__rkf = {6, 4, hrm__rkf_a, hrm__rkf_b, hrm__rkf_c, hrm__rkf_bh, 4};
-static const hrm__tableau hrm__ck = {6, 4, hrm__ck_a, hrm__ck_b, hrm__ck_c, hrm__ck_bh, 4};
-static const hrm__tableau hrm__vr = {8, 6, hrm__vr_a, hrm__vr_b, hrm__vr_c, hrm__vr_bh, 5};
+static HRM__TABLE const hrm__tableau hrm__bs = {4, 3, hrm__bs_a, hrm__bs_b, hrm__bs_c, hrm__bs_bh, 2};
+static HRM__TABLE const hrm__tableau hrm__dp = {7, 5, hrm__dp_a, hrm__dp_b, hrm__dp_c, hrm__dp_bh, 4};
+static HRM__TABLE const hrm__tableau hrm__rkf = {6, 4, hrm__rkf_a, hrm__rkf_b, hrm__rkf_c, hrm__rkf_bh, 4};
+static HRM__TABLE const hrm__tableau hrm__ck = {6, 4, hrm__ck_a, hrm__ck_b, hrm__ck_c, hrm__ck_bh, 4};
+static HRM__TABLE const hrm__tableau hrm__vr = {8, 6, hrm__vr_a, hrm__vr_b, hrm__vr_c, hrm__vr_bh, 5};
 
 /* Gauss-Kronrod G7/K15 on [-1, 1], the 15 nodes ascending with their
    Kronrod weights and the Gauss weights (0 off the G7 nodes) (Piessens et
    al. 1983, QUADPACK qk15). */
-static const hrm_real hrm__gk_x[15] = {
+static HRM__TABLE const hrm_real hrm__gk_x[15] = {
     HRM__R(-0.991455371120812639206854697526329), HRM__R(-0.949107912342758524526189684047851), HRM__R(-0.864864423359769072789712788640926),
     HRM__R(-0.741531185599394439863864773280788), HRM__R(-0.586087235467691130294144845693013), HRM__R(-0.405845151377397166906606412076961),
     HRM__R(-0.207784955007898467600689403773245), 0, HRM__R(0.207784955007898467600689403773245),
     HRM__R(0.405845151377397166906606412076961), HRM__R(0.586087235467691130294144845693013), HRM__R(0.741531185599394439863864773280788),
     HRM__R(0.864864423359769072789712788640926), HRM__R(0.949107912342758524526189684047851), HRM__R(0.991455371120812639206854697526329)};
-static const hrm_real hrm__gk_wk[15] = {
+static HRM__TABLE const hrm_real hrm__gk_wk[15] = {
     HRM__R(0.022935322010529224963732008058970), HRM__R(0.063092092629978553290700663189204), HRM__R(0.104790010322250183839876322541518),
     HRM__R(0.140653259715525918745189590510238), HRM__R(0.169004726639267902826583426598550), HRM__R(0.190350578064785409913256402421014),
     HRM__R(0.204432940075298892414161999234649), HRM__R(0.209482141084727828012999174891714), HRM__R(0.204432940075298892414161999234649),
     HRM__R(0.190350578064785409913256402421014), HRM__R(0.169004726639267902826583426598550), HRM__R(0.140653259715525918745189590510238),
     HRM__R(0.104790010322250183839876322541518), HRM__R(0.063092092629978553290700663189204), HRM__R(0.022935322010529224963732008058970)};
-static const hrm_real hrm__gk_wg[15] = {
+static HRM__TABLE const hrm_real hrm__gk_wg[15] = {
     0, HRM__R(0.129484966168869693270611432679082), 0,
     HRM__R(0.279705391489276667901467771423780), 0, HRM__R(0.381830050505118944950369775488975),
     0, HRM__R(0.417959183673469387755102040816327), 0,
@@ -1212,7 +1238,7 @@ static const hrm_real hrm__gk_wg[15] = {
    order: row k integrates the degree-14 interpolant of the 15 samples
    (nodes ascending) from -1 to node k. Derived from the nodes above by
    solving the moment equations in 60-digit arithmetic. */
-static const hrm_real hrm__gk_tau[15 * 15] = {
+static HRM__TABLE const hrm_real hrm__gk_tau[15 * 15] = {
     HRM__R(1.03981052571528020e-02), HRM__R(-2.83769996283116761e-03), HRM__R(1.62788193298481925e-03), HRM__R(-1.11841594714680325e-03), HRM__R(8.45482170423812371e-04), HRM__R(-6.66001240133393471e-04), HRM__R(5.32680720730747438e-04), HRM__R(-4.30041676019444997e-04), HRM__R(3.48989628422702184e-04), HRM__R(-2.80737088267947129e-04), HRM__R(2.19579858925692716e-04), HRM__R(-1.64513471435547557e-04), HRM__R(1.15766632496470633e-04), HRM__R(-7.01728856955884225e-05), HRM__R(2.37249495802066603e-05),
     HRM__R(2.59676963544380954e-02), HRM__R(2.89875870535199719e-02), HRM__R(-6.27697160882417261e-03), HRM__R(3.73995774299085539e-03), HRM__R(-2.68023068806569169e-03), HRM__R(2.05710230908247391e-03), HRM__R(-1.62137543376796684e-03), HRM__R(1.29718279755412997e-03), HRM__R(-1.04651322220011703e-03), HRM__R(8.38503193963724522e-04), HRM__R(-6.54039450176873024e-04), HRM__R(4.89084267608792854e-04), HRM__R(-3.43721602645067541e-04), HRM__R(2.08186242500220495e-04), HRM__R(-7.03602987368992560e-05),
     HRM__R(2.10599038857128759e-02), HRM__R(7.07105324151710846e-02), HRM__R(5.00573892969998213e-02), HRM__R(-1.03156106672409823e-02), HRM__R(6.09949512399137091e-03), HRM__R(-4.31472273996388270e-03), HRM__R(3.25691411481426798e-03), HRM__R(-2.53940842894569011e-03), HRM__R(2.01527612105997789e-03), HRM__R(-1.59712331800328428e-03), HRM__R(1.23646392203085177e-03), HRM__R(-9.19841684291590857e-04), HRM__R(6.44210468122750944e-04), HRM__R(-3.89363950916298929e-04), HRM__R(1.31462081689653302e-04),
@@ -1233,21 +1259,21 @@ static const hrm_real hrm__gk_tau[15 * 15] = {
 /* Gauss-Kronrod G3/K7 on [-1, 1]: the Kronrod extension of the 3-point
    Gauss rule, exact to degree 11 (nodes and weights from the moment
    equations in 50-digit arithmetic; the values tabulated by Kronrod 1965). */
-static const hrm_real hrm__k7_x[7] = {
+static HRM__TABLE const hrm_real hrm__k7_x[7] = {
     HRM__R(-0.960491268708020283423507092629079963), HRM__R(-0.774596669241483377035853079956479922), HRM__R(-0.434243749346802558002071502844627817),
     0, HRM__R(0.434243749346802558002071502844627817), HRM__R(0.774596669241483377035853079956479922),
     HRM__R(0.960491268708020283423507092629079963)};
-static const hrm_real hrm__k7_wk[7] = {
+static HRM__TABLE const hrm_real hrm__k7_wk[7] = {
     HRM__R(0.104656226026467265193823857192073038), HRM__R(0.268488089868333440728569280666709625), HRM__R(0.401397414775962222905051818618431879),
     HRM__R(0.450916538658474142345110087045570917), HRM__R(0.401397414775962222905051818618431879), HRM__R(0.268488089868333440728569280666709625),
     HRM__R(0.104656226026467265193823857192073038)};
-static const hrm_real hrm__k7_wg[7] = {
+static HRM__TABLE const hrm_real hrm__k7_wg[7] = {
     0, HRM__R(0.555555555555555555555555555555555556), 0,
     HRM__R(0.888888888888888888888888888888888889), 0, HRM__R(0.555555555555555555555555555555555556),
     0};
 /* tau at the K7 nodes: row k integrates the degree-6 interpolant of the 7
    samples from -1 to node k (50-digit quadrature of the Lagrange basis). */
-static const hrm_real hrm__k7_tau[7 * 7] = {
+static HRM__TABLE const hrm_real hrm__k7_tau[7 * 7] = {
     HRM__R(0.0481496455686497328621236293498), HRM__R(-0.0130360908056543319319257724666), HRM__R(0.00700577096934105189603216828381),
     HRM__R(-0.00428231888789362889754385797461), HRM__R(0.00272596459404615386195021000773), HRM__R(-0.00157297682571128731846100459503),
     HRM__R(0.000518736679202026104317534765771),
@@ -1279,13 +1305,13 @@ typedef struct hrm__gk_pair {
     const hrm_real *x, *wk, *wg, *tau;
     hrm_real gap; /* below the closest node of an ancestor, per width */
 } hrm__gk_pair;
-static const hrm__gk_pair hrm__k15 = {15, 22, hrm__gk_x, hrm__gk_wk, hrm__gk_wg, hrm__gk_tau, HRM__R(1e-4)};
-static const hrm__gk_pair hrm__k7 = {7, 11, hrm__k7_x, hrm__k7_wk, hrm__k7_wg, hrm__k7_tau, HRM__R(1e-2)};
+static HRM__TABLE const hrm__gk_pair hrm__k15 = {15, 22, hrm__gk_x, hrm__gk_wk, hrm__gk_wg, hrm__gk_tau, HRM__R(1e-4)};
+static HRM__TABLE const hrm__gk_pair hrm__k7 = {7, 11, hrm__k7_x, hrm__k7_wk, hrm__k7_wg, hrm__k7_tau, HRM__R(1e-2)};
 
 /* The Chebyshev polynomials at the degree-16 Lobatto points, ascending in t:
    T_k(-cos(j pi / 16)) = (-1)^k cos(j k pi / 16), row k, column j (the
    degree-8 points are the even columns). */
-static const hrm_real hrm__cheb_T[17][17] = {
+static HRM__TABLE const hrm_real hrm__cheb_T[17][17] = {
     {1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1},
     {-1, HRM__R(-0.980785280403230449126), HRM__R(-0.923879532511286756128), HRM__R(-0.831469612302545237079), HRM__R(-0.707106781186547524401), HRM__R(-0.555570233019602224743), HRM__R(-0.382683432365089771728), HRM__R(-0.195090322016128267848), 0, HRM__R(0.195090322016128267848), HRM__R(0.382683432365089771728), HRM__R(0.555570233019602224743), HRM__R(0.707106781186547524401), HRM__R(0.831469612302545237079), HRM__R(0.923879532511286756128), HRM__R(0.980785280403230449126), 1},
     {1, HRM__R(0.923879532511286756128), HRM__R(0.707106781186547524401), HRM__R(0.382683432365089771728), 0, HRM__R(-0.382683432365089771728), HRM__R(-0.707106781186547524401), HRM__R(-0.923879532511286756128), -1, HRM__R(-0.923879532511286756128), HRM__R(-0.707106781186547524401), HRM__R(-0.382683432365089771728), 0, HRM__R(0.382683432365089771728), HRM__R(0.707106781186547524401), HRM__R(0.923879532511286756128), 1},
@@ -1323,7 +1349,7 @@ typedef struct hrm__method_info {
     int driver;                /* HRM__DRV_*: the code that runs it */
 } hrm__method_info;
 
-static const hrm__method_info hrm__methods[HRM_METHOD_COUNT] = {
+static HRM__TABLE const hrm__method_info hrm__methods[HRM_METHOD_COUNT] = {
     {"default", HRM__FIXED_QUAD, 32, 4, 0, 0, 0, 0, 0}, /* never read: resolved to HRM_NESTED_SIMPSON first */
 #define HRM__METHOD_INFO(name, text, family, steps, order, rte, tableau, fit, stream, driver) \
     {text, family, steps, order, rte, tableau, fit, stream, driver},
@@ -1333,7 +1359,7 @@ static const hrm__method_info hrm__methods[HRM_METHOD_COUNT] = {
 
 /* Adaptive: nested Simpson, Gauss-Kronrod and the Runge-Kutta pairs (a
    tolerance, an error estimate, a budget, remembered abscissae). */
-static int hrm__is_adaptive(hrm_method method)
+static HRM_DEVICE int hrm__is_adaptive(hrm_method method)
 {
     int fam = hrm__methods[method].family;
     return fam == HRM__ADAPTIVE_QUAD || fam == HRM__PAIR;
@@ -1342,7 +1368,7 @@ static int hrm__is_adaptive(hrm_method method)
 /* The driver of resolved options o: the method's; Gauss-Kronrod's by its
    mode (HRM__DRV_GK: worst first, global; HRM__DRV_GK_LOCAL: Munoz's). */
 #define HRM__DRV_GK_LOCAL 9
-static int hrm__driver(const hrm_options *o)
+static HRM_DEVICE int hrm__driver(const hrm_options *o)
 {
     int d = hrm__methods[o->method].driver;
     return d == HRM__DRV_GK && o->gk_mode == HRM_GK_LOCAL ? HRM__DRV_GK_LOCAL : d;
@@ -1503,7 +1529,7 @@ typedef struct hrm__ctx {
     hrm_real tr_s, tr_v[HRM__CH]; /* its abscissa and values */
 } hrm__ctx;
 
-static void hrm__fill(hrm_real *v, int n, hrm_real x)
+static HRM_DEVICE void hrm__fill(hrm_real *v, int n, hrm_real x)
 {
     int i;
     for (i = 0; i < n; ++i) v[i] = x;
@@ -1514,7 +1540,7 @@ static void hrm__fill(hrm_real *v, int n, hrm_real x)
    recorded once and the values are zeroed so that the arithmetic in flight
    stays harmless until the driver notices and stops; no callback is called
    after it. */
-static void hrm__check(hrm__ctx *c, hrm_real *v, int kind)
+static HRM_DEVICE void hrm__check(hrm__ctx *c, hrm_real *v, int kind)
 {
     int i;
     for (i = 0; i < HRM__CH; ++i) {
@@ -1536,7 +1562,7 @@ static void hrm__check(hrm__ctx *c, hrm_real *v, int kind)
    their sums over the ray and the estimates' differences all fit with a
    factor 1024 to spare (a finite coefficient of 1e308 made S Tr h inf - inf
    in ten rules). */
-static hrm_real hrm__range(hrm_real T)
+static HRM_DEVICE hrm_real hrm__range(hrm_real T)
 {
     hrm_real big = HRM__IS_FLOAT ? HRM__R(FLT_MAX) : HRM__R(DBL_MAX);
     return big / 1024 / (HRM__FINITE(T) && T > 1 ? T : 1);
@@ -1548,7 +1574,7 @@ static hrm_real hrm__range(hrm_real T)
    below t's resolution: a ray far from the origin under a warp, a light
    within 1e-12 of the ray) costs no evaluation; without this count the
    budget never ran out and such solves never ended. */
-static long hrm__spent(const hrm__ctx *c)
+static HRM_DEVICE long hrm__spent(const hrm__ctx *c)
 {
     long work = c->stats.steps + c->stats.rejected;
     return c->stats.evals > work ? c->stats.evals : work;
@@ -1559,7 +1585,7 @@ static long hrm__spent(const hrm__ctx *c)
    turns inf, then NaN (a step size from NaN never ended the loop). The
    range of a state is the largest real / 1024: sources and coefficients
    within R integrate to at most R (t1 - t0). */
-static void hrm__state_check(hrm__ctx *c, const hrm_real *y, int n)
+static HRM_DEVICE void hrm__state_check(hrm__ctx *c, const hrm_real *y, int n)
 {
     hrm_real lim = hrm__range(1);
     int i;
@@ -1570,7 +1596,7 @@ static void hrm__state_check(hrm__ctx *c, const hrm_real *y, int n)
 /* The sigma callbacks at s, those that are wanted and present (absent ones
    are zero; sigma_t defaults to sigma_a + sigma_s), validated. Returns
    whether any was called (one medium evaluation). */
-static int hrm__coeffs(hrm__ctx *c, hrm_real s, int want_sa, int want_ss, int want_st,
+static HRM_DEVICE HRM__CALL int hrm__coeffs(hrm__ctx *c, hrm_real s, int want_sa, int want_ss, int want_st,
                        hrm_real sa[HRM__CH], hrm_real ss[HRM__CH], hrm_real st[HRM__CH])
 {
     const hrm_medium *m = c->m;
@@ -1614,7 +1640,7 @@ static int hrm__coeffs(hrm__ctx *c, hrm_real s, int want_sa, int want_ss, int wa
     return called;
 }
 
-static hrm_real hrm__abscissa(const hrm__ctx *c, hrm_real off)
+static HRM_DEVICE hrm_real hrm__abscissa(const hrm__ctx *c, hrm_real off)
 {
     hrm_real s = c->t0 + off;
     return s < c->t1 ? s : c->t1; /* t0 + (t1 - t0) may round past t1 */
@@ -1624,7 +1650,7 @@ static hrm_real hrm__abscissa(const hrm__ctx *c, hrm_real off)
    [0, 1], and not rising along the ray against its previous call (beyond
    the rounding of a closed form: 64 epsilons of max(1, tau) relative).
    Returns whether the callback was called (not after an error). */
-static int hrm__tr_call(hrm__ctx *c, hrm_real s, hrm_real tr[HRM__CH])
+static HRM_DEVICE HRM__CALL int hrm__tr_call(hrm__ctx *c, hrm_real s, hrm_real tr[HRM__CH])
 {
     hrm_real tiny = HRM__TINY;
     int i, far = s > c->tr_s;
@@ -1656,7 +1682,7 @@ static int hrm__tr_call(hrm__ctx *c, hrm_real s, hrm_real tr[HRM__CH])
    off the breakpoint, or the breakpoint is some ulps off the true edge (a
    host's shadow test and its breakpoint: 18 ulps apart in make render's
    shafts). */
-static hrm_real hrm__inside(hrm_real s, int dir)
+static HRM_DEVICE hrm_real hrm__inside(hrm_real s, int dir)
 {
     hrm_real tiny = HRM__TINY;
     return s + (hrm_real)dir * (64 * HRM__EPS * HRM_FABS(s) + tiny);
@@ -1664,12 +1690,12 @@ static hrm_real hrm__inside(hrm_real s, int dir)
 
 /* Never outside the ray: a jump within 64 ulps of t0 put a piece's inner
    end, moved inside it, before t0. */
-static hrm_real hrm__in_ray(const hrm__ctx *c, hrm_real s)
+static HRM_DEVICE hrm_real hrm__in_ray(const hrm__ctx *c, hrm_real s)
 {
     return s < c->t0 ? c->t0 : s > c->t1 ? c->t1 : s;
 }
 
-static hrm_real hrm__side(const hrm__ctx *c, hrm_real s)
+static HRM_DEVICE hrm_real hrm__side(const hrm__ctx *c, hrm_real s)
 {
     hrm_real lo, hi;
     if (c->s_lo == -HRM__R(HUGE_VAL) && c->s_hi == HRM__R(HUGE_VAL)) return s;
@@ -1681,7 +1707,7 @@ static hrm_real hrm__side(const hrm__ctx *c, hrm_real s)
 }
 
 /* Whether an offset is one of the breakpoints'. */
-static int hrm__is_break(const hrm__ctx *c, hrm_real off)
+static HRM_DEVICE int hrm__is_break(const hrm__ctx *c, hrm_real off)
 {
     int k;
     for (k = 0; k < c->nbrk; ++k)
@@ -1691,7 +1717,7 @@ static int hrm__is_break(const hrm__ctx *c, hrm_real off)
 
 /* splitmix64 (Steele, Lea, Flood 2014): the generator's state lives in the
    call, so results depend on options.seed alone. */
-static uint64_t hrm__next(uint64_t *state)
+static HRM_DEVICE uint64_t hrm__next(uint64_t *state)
 {
     uint64_t z = (*state += 0x9E3779B97F4A7C15ull);
     z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
@@ -1700,7 +1726,7 @@ static uint64_t hrm__next(uint64_t *state)
 }
 
 /* Uniform in [0, 1), exactly representable in hrm_real (never rounds to 1). */
-static hrm_real hrm__uniform(uint64_t *state)
+static HRM_DEVICE hrm_real hrm__uniform(uint64_t *state)
 {
     uint64_t x = hrm__next(state);
     if (HRM__IS_FLOAT) return (hrm_real)((float)(x >> 40) * (1.0f / 16777216.0f));
@@ -1807,7 +1833,7 @@ typedef struct hrm__tau {
 } hrm__tau;
 
 /* sigma_t at offset off from t0: one medium evaluation. */
-static void hrm__sigma_t_at(hrm__ctx *c, hrm_real off, int side, hrm_real st[HRM__CH])
+static HRM_DEVICE void hrm__sigma_t_at(hrm__ctx *c, hrm_real off, int side, hrm_real st[HRM__CH])
 {
     hrm_real sa[HRM__CH], ss[HRM__CH], s = hrm__abscissa(c, off);
     /* a panel's end at a breakpoint: sigma_t on the panel's side */
@@ -1820,7 +1846,7 @@ static void hrm__sigma_t_at(hrm__ctx *c, hrm_real off, int side, hrm_real st[HRM
    per channel, never negative (sigma_t >= 0); 0 where two of the points
    lie closer than a sixteenth of the interval (no ill-conditioned
    stencil: the caller takes fewer). */
-static int hrm__stream_int(const hrm__stream *S, int i, int a, int b, hrm_real out[HRM__CH])
+static HRM_DEVICE HRM__CALL int hrm__stream_int(const hrm__stream *S, int i, int a, int b, hrm_real out[HRM__CH])
 {
     static const hrm_real r = HRM__R(0.28867513459481288225); /* 1 / (2 sqrt 3) */
     hrm_real h = S->x[i + 1] - S->x[i], w[4], g, sum;
@@ -1854,7 +1880,7 @@ static int hrm__stream_int(const hrm__stream *S, int i, int a, int b, hrm_real o
    right neighbour has not come, only from points before it that spread
    over a quarter of it (no extrapolation from a cluster: a warp's nodes
    crowd near the light). */
-static void hrm__stream_interval(const hrm__stream *S, int i, int m, hrm_real d[HRM__CH])
+static HRM_DEVICE void hrm__stream_interval(const hrm__stream *S, int i, int m, hrm_real d[HRM__CH])
 {
     hrm_real h = S->x[i + 1] - S->x[i];
     if (i + 1 < m) {
@@ -1873,14 +1899,14 @@ static void hrm__stream_interval(const hrm__stream *S, int i, int m, hrm_real d[
 }
 
 /* The stream's last point's index in its window. */
-static int hrm__stream_last(const hrm__stream *S) { return (S->n < 4 ? S->n : 4) - 1; }
+static HRM_DEVICE HRM__CALL int hrm__stream_last(const hrm__stream *S) { return (S->n < 4 ? S->n : 4) - 1; }
 
 /* The stream's next point, offset x beyond the last, sigma_t f. An
    interval is integrated for good (tc, up to point ci) once a point
    beyond its right end has come (the first of a piece: two), by the
    cubic centred on it; tau at x adds what is not yet, the last interval
    one-sided: its error is provisional, never carried along the ray. */
-static void hrm__stream_push(hrm__stream *S, hrm_real x, const hrm_real f[HRM__CH])
+static HRM_DEVICE HRM__CALL void hrm__stream_push(hrm__stream *S, hrm_real x, const hrm_real f[HRM__CH])
 {
     hrm_real d[HRM__CH];
     int m = S->n < 4 ? S->n : 4, j, ch, i;
@@ -1914,7 +1940,7 @@ static void hrm__stream_push(hrm__stream *S, hrm_real x, const hrm_real f[HRM__C
 
 /* The pieces of width at most 1 that q > 0 (not above LONG_MAX) takes:
    its ceiling. */
-static long hrm__pieces(hrm_real q)
+static HRM_DEVICE long hrm__pieces(hrm_real q)
 {
     long n = (long)q;
     return (hrm_real)n < q ? n + 1 : n;
@@ -1925,7 +1951,7 @@ static long hrm__pieces(hrm_real q)
    warp: the gap's share by length of the points left), then x itself
    (sigma_t f there, or NULL: sampled, on side `side` of a breakpoint).
    The first point of a piece is its start (sampled on its side). */
-static void hrm__stream_to(hrm__ctx *c, hrm_real x, int side, const hrm_real *f)
+static HRM_DEVICE HRM__CALL void hrm__stream_to(hrm__ctx *c, hrm_real x, int side, const hrm_real *f)
 {
     hrm__stream *S = &c->sm;
     hrm_real st[HRM__CH], last;
@@ -1978,7 +2004,7 @@ static void hrm__stream_to(hrm__ctx *c, hrm_real x, int side, const hrm_real *f)
 /* A new piece of the ray from offset off (a breakpoint): the stream
    reaches it on the left side, and starts again (tau kept) on the
    right. */
-static void hrm__stream_piece(hrm__ctx *c, hrm_real off)
+static HRM_DEVICE void hrm__stream_piece(hrm__ctx *c, hrm_real off)
 {
     if (c->sm.n > 0) hrm__stream_to(c, off, -1, NULL);
     c->sm.n = 0;
@@ -1990,7 +2016,7 @@ static void hrm__stream_piece(hrm__ctx *c, hrm_real off)
    the antiderivative that vanishes at the panel's start: e[0..n+1]. Also
    the panel's increment (in units of half its length) and the error
    estimate |d_(n-1)| + |d_n| (in units of sigma_t). */
-static void hrm__cheb_fit(const hrm_real f[HRM__CHEB + 1], int n,
+static HRM_DEVICE HRM__CALL void hrm__cheb_fit(const hrm_real f[HRM__CHEB + 1], int n,
                           hrm_real e[HRM__CHEB + 2][HRM__CH], int ch,
                           hrm_real *incr, hrm_real *err, hrm_real d[HRM__CHEB + 3])
 {
@@ -2032,7 +2058,7 @@ static void hrm__cheb_fit(const hrm_real f[HRM__CHEB + 1], int n,
         u2 = bk_;                                                             \
     } while (0)
 
-static void hrm__cheb_eval(const hrm_real e[HRM__CHEB + 2][HRM__CH], int n, hrm_real xi,
+static HRM_DEVICE HRM__CALL void hrm__cheb_eval(const hrm_real e[HRM__CHEB + 2][HRM__CH], int n, hrm_real xi,
                            hrm_real F[HRM__CH])
 {
     hrm_real x2 = 2 * xi, q = x2 * x2 - 1;
@@ -2066,7 +2092,7 @@ static void hrm__cheb_eval(const hrm_real e[HRM__CHEB + 2][HRM__CH], int n, hrm_
 /* F'(xi) = sum k e_k U_(k-1)(xi) in every channel (Clenshaw's recurrence
    for the Chebyshev polynomials of the second kind): the interpolant of
    sigma_t itself. */
-static void hrm__cheb_deriv(const hrm_real e[HRM__CHEB + 2][HRM__CH], int n, hrm_real xi,
+static HRM_DEVICE void hrm__cheb_deriv(const hrm_real e[HRM__CHEB + 2][HRM__CH], int n, hrm_real xi,
                             hrm_real D[HRM__CH])
 {
     int i, k;
@@ -2082,7 +2108,7 @@ static void hrm__cheb_deriv(const hrm_real e[HRM__CHEB + 2][HRM__CH], int n, hrm
 }
 
 /* The sample positions of a panel: a + (b - a) (1 - cos(j pi / 16)) / 2. */
-static hrm_real hrm__cheb_at(hrm_real a, hrm_real b, int j16)
+static HRM_DEVICE hrm_real hrm__cheb_at(hrm_real a, hrm_real b, int j16)
 {
     /* (1 - cos(j pi / 16)) / 2 = (1 + T_1 at point j) / 2 */
     return j16 == 16 ? b : a + (b - a) * ((1 + hrm__cheb_T[1][j16]) / 2);
@@ -2091,7 +2117,7 @@ static hrm_real hrm__cheb_at(hrm_real a, hrm_real b, int j16)
 /* Sample the panel [a, b] at degree n given f[.][0] (and, when have8, the
    degree-8 samples), fit every channel: dtau its increments, err its
    error estimates, worst the largest error over its share of tol. */
-static hrm_real hrm__tau_fit(hrm__ctx *c, const hrm__tau *L, hrm_real a, hrm_real b, int n,
+static HRM_DEVICE HRM__CALL hrm_real hrm__tau_fit(hrm__ctx *c, const hrm__tau *L, hrm_real a, hrm_real b, int n,
                              int have8, const hrm_real *tau_a,
                              hrm_real f[HRM__CH][HRM__CHEB + 1], hrm__tcoef *co,
                              hrm_real dtau[HRM__CH])
@@ -2140,7 +2166,7 @@ static hrm_real hrm__tau_fit(hrm__ctx *c, const hrm__tau *L, hrm_real a, hrm_rea
     return worst;
 }
 
-static void hrm__forget(hrm__tau *L)
+static HRM_DEVICE void hrm__forget(hrm__tau *L)
 {
     int k;
     for (k = 0; k < HRM__TCACHE; ++k) L->cache[k].id = -1;
@@ -2148,7 +2174,7 @@ static void hrm__forget(hrm__tau *L)
 }
 
 /* A cache entry for a new panel's coefficients. */
-static hrm__tcoef *hrm__tcache_slot(hrm__tau *L)
+static HRM_DEVICE hrm__tcoef *hrm__tcache_slot(hrm__tau *L)
 {
     L->last = L->next;
     L->next = (L->next + 1) % HRM__TCACHE;
@@ -2157,7 +2183,7 @@ static hrm__tcoef *hrm__tcache_slot(hrm__tau *L)
 
 /* The remembered samples of rejected panels at or before b dropped
    (those the layer was taught stay). */
-static void hrm__tau_drop(hrm__tau *L, hrm_real b)
+static HRM_DEVICE void hrm__tau_drop(hrm__tau *L, hrm_real b)
 {
     int i, n = 0;
     for (i = 0; i < L->nmem; ++i) {
@@ -2171,7 +2197,7 @@ static void hrm__tau_drop(hrm__tau *L, hrm_real b)
 
 /* The layer built again from t0 (new breakpoints, or a sample it missed),
    as a new one would be with what it was taught. */
-static void hrm__tau_rebuild(hrm__tau *L)
+static HRM_DEVICE void hrm__tau_rebuild(hrm__tau *L)
 {
     L->count = 0;
     L->base = 0;
@@ -2184,7 +2210,7 @@ static void hrm__tau_rebuild(hrm__tau *L)
     hrm__forget(L);
 }
 
-static void hrm__tau_init(hrm__tau *L, hrm_real end, hrm_real tol)
+static HRM_DEVICE void hrm__tau_init(hrm__tau *L, hrm_real end, hrm_real tol)
 {
     L->end = end;
     L->tol = tol;
@@ -2194,18 +2220,20 @@ static void hrm__tau_init(hrm__tau *L, hrm_real end, hrm_real tol)
 
 /* A sample the layer must reproduce (sorted, while room is left); keep:
    taught, never dropped. */
-static void hrm__tau_insert(hrm__tau *L, hrm_real x, const hrm_real s[HRM__CH], int keep)
+static HRM_DEVICE void hrm__tau_insert(hrm__tau *L, hrm_real x, const hrm_real s[HRM__CH], int keep)
 {
-    int at;
+    int at, i;
     for (at = 0; at < L->nmem && L->mem_x[at] < x; ++at) {}
     if (at < L->nmem && L->mem_x[at] == x) {
         L->mem_keep[at] = (char)(L->mem_keep[at] | keep);
         return;
     }
     if (L->nmem == HRM__TMEM) return;
-    memmove(L->mem_x + at + 1, L->mem_x + at, sizeof(hrm_real) * (size_t)(L->nmem - at));
-    memmove(L->mem_s + at + 1, L->mem_s + at, sizeof L->mem_s[0] * (size_t)(L->nmem - at));
-    memmove(L->mem_keep + at + 1, L->mem_keep + at, (size_t)(L->nmem - at));
+    for (i = L->nmem; i > at; --i) { /* memmove is host-only in CUDA */
+        L->mem_x[i] = L->mem_x[i - 1];
+        memcpy(L->mem_s[i], L->mem_s[i - 1], sizeof L->mem_s[0]);
+        L->mem_keep[i] = L->mem_keep[i - 1];
+    }
     L->mem_x[at] = x;
     memcpy(L->mem_s[at], s, sizeof L->mem_s[0]);
     L->mem_keep[at] = (char)keep;
@@ -2213,7 +2241,7 @@ static void hrm__tau_insert(hrm__tau *L, hrm_real x, const hrm_real s[HRM__CH], 
 }
 
 /* What the medium scan saw, or a node the layer missed: kept. */
-static void hrm__tau_learn(hrm__tau *L, hrm_real x, const hrm_real s[HRM__CH])
+static HRM_DEVICE void hrm__tau_learn(hrm__tau *L, hrm_real x, const hrm_real s[HRM__CH])
 {
     hrm__tau_insert(L, x, s, 1);
 }
@@ -2221,7 +2249,7 @@ static void hrm__tau_learn(hrm__tau *L, hrm_real x, const hrm_real s[HRM__CH])
 /* Remember the largest and the smallest sigma_t (summed over channels)
    that a rejected panel [a, b] sampled inside it: a thin layer or a hole
    it saw. */
-static void hrm__tau_remember(hrm__tau *L, hrm_real a, hrm_real b, int n,
+static HRM_DEVICE void hrm__tau_remember(hrm__tau *L, hrm_real a, hrm_real b, int n,
                               hrm_real f[HRM__CH][HRM__CHEB + 1])
 {
     int j, i, k, pick[2] = {-1, -1}, step = HRM__CHEB / n;
@@ -2249,7 +2277,7 @@ static void hrm__tau_remember(hrm__tau *L, hrm_real a, hrm_real b, int n,
    dropped and they are taken half as often. Taken only where no rejected
    panel's sample lies ahead (what the layer was taught stays throughout),
    so that the march from it repeats the first one exactly. */
-static void hrm__tau_checkpoint(hrm__tau *L, long id, hrm_real a)
+static HRM_DEVICE void hrm__tau_checkpoint(hrm__tau *L, long id, hrm_real a)
 {
     hrm__tcheck *q;
     if (L->ncp == HRM__TCHECK) {
@@ -2267,7 +2295,7 @@ static void hrm__tau_checkpoint(hrm__tau *L, long id, hrm_real a)
 }
 
 /* The march restarted at checkpoint k. */
-static void hrm__tau_from(hrm__tau *L, int k)
+static HRM_DEVICE void hrm__tau_from(hrm__tau *L, int k)
 {
     const hrm__tcheck *q = &L->cp[k];
     L->count = L->base = q->id;
@@ -2280,7 +2308,7 @@ static void hrm__tau_from(hrm__tau *L, int k)
 }
 
 /* The last checkpoint that starts before off, or -1. */
-static int hrm__tau_cp_before(const hrm__tau *L, hrm_real off)
+static HRM_DEVICE int hrm__tau_cp_before(const hrm__tau *L, hrm_real off)
 {
     int k = L->ncp - 1;
     while (k >= 0 && !(L->cp[k].a < off)) --k;
@@ -2289,7 +2317,7 @@ static int hrm__tau_cp_before(const hrm__tau *L, hrm_real off)
 
 /* Accept one more panel after the last (the ray's first from t0), its
    coefficients into co. */
-static void hrm__tau_march(hrm__ctx *c, hrm__tau *L, hrm__tcoef *co)
+static HRM_DEVICE HRM__CALL void hrm__tau_march(hrm__ctx *c, hrm__tau *L, hrm__tcoef *co)
 {
     hrm_real f[HRM__CH][HRM__CHEB + 1], dtau[HRM__CH];
     hrm_real a = 0, tau_a[HRM__CH], h, res;
@@ -2369,7 +2397,7 @@ static void hrm__tau_march(hrm__ctx *c, hrm__tau *L, hrm__tcoef *co)
 }
 
 /* tau(t0, t0 + off) in every channel. */
-static void hrm__tau_at(hrm__ctx *c, hrm__tau *L, hrm_real off, hrm_real tau[HRM__CH],
+static HRM_DEVICE HRM__CALL void hrm__tau_at(hrm__ctx *c, hrm__tau *L, hrm_real off, hrm_real tau[HRM__CH],
                         hrm_real *sig)
 {
     const hrm__tpanel *p;
@@ -2472,7 +2500,7 @@ static void hrm__tau_at(hrm__ctx *c, hrm__tau *L, hrm_real off, hrm_real tau[HRM
                 (cos p cos pa), free of the cancellation in
                 delta + D tan p - t0, with cos pa and sin pa exact.
    user:        the host's callbacks. */
-static void hrm__map(hrm__ctx *c, hrm_real p, hrm_real *off, hrm_real *J)
+static HRM_DEVICE HRM__CALL void hrm__map(hrm__ctx *c, hrm_real p, hrm_real *off, hrm_real *J)
 {
     hrm_real o, j;
     switch (c->warp) {
@@ -2519,7 +2547,7 @@ static void hrm__map(hrm__ctx *c, hrm_real p, hrm_real *off, hrm_real *J)
    whose map is the host's to call (and may cost a Newton solve a node):
    there hrm__stream_to gives each gap its share of the points left by
    length. */
-static void hrm__stream_level(hrm__ctx *c, long M)
+static HRM_DEVICE HRM__CALL void hrm__stream_level(hrm__ctx *c, long M)
 {
     hrm_real top[HRM__STREAM_EXTRA + 1], J, a, b, g;
     int n[HRM__STREAM_EXTRA + 1], ntop = 0, e, i, j, best;
@@ -2556,7 +2584,7 @@ static void hrm__stream_level(hrm__ctx *c, long M)
    which nobody measured, is least likely to be thinner than (a channel
    thinner than sigma_ref far out makes the warped integrand singular at
    u = 1). */
-static void hrm__tau_reach(hrm__ctx *c, hrm_real reach, hrm_real *x, hrm_real *tx,
+static HRM_DEVICE HRM__CALL void hrm__tau_reach(hrm__ctx *c, hrm_real reach, hrm_real *x, hrm_real *tx,
                            hrm_real *lowest)
 {
     hrm_real end = HRM__FINITE(c->T) ? c->T : HRM__R(1e30), tr[HRM__CH], least;
@@ -2650,7 +2678,7 @@ static void hrm__tau_reach(hrm__ctx *c, hrm_real reach, hrm_real *x, hrm_real *t
 /* The warp's parameters alone (no callback is called): HRM_ERR_BAD_WARP
    for an unknown kind, sigma_ref or D negative or not finite, delta not
    finite, a user warp without its callbacks. */
-static hrm_status hrm__warp_valid(const hrm_warp *w)
+static HRM_DEVICE hrm_status hrm__warp_valid(const hrm_warp *w)
 {
     switch (w->kind) {
     case HRM_WARP_NONE: return HRM_OK;
@@ -2664,7 +2692,7 @@ static hrm_status hrm__warp_valid(const hrm_warp *w)
     }
 }
 
-static hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_warp *w)
+static HRM_DEVICE HRM__CALL hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_warp *w)
 {
     int inf = !HRM__FINITE(c->T);
     hrm_real T = c->T; /* (w's parameters checked: hrm__validate) */
@@ -2774,7 +2802,7 @@ static hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_warp *w)
 /* |v| scaled by its largest component: no overflow or underflow where |v|
    itself is representable (a light 1e300 away, or 1e-310 off the ray).
    v finite. */
-static double hrm__norm3(const double v[3])
+static HRM_DEVICE double hrm__norm3(const double v[3])
 {
     double m = 0, q = 0, a;
     int i;
@@ -2789,7 +2817,7 @@ static double hrm__norm3(const double v[3])
 
 /* A direction made unit length (in double whatever hrm_real is); its
    length in *len. Returns 0 where dir is zero or not finite. */
-static int hrm__unit3(const hrm_real dir[3], double d[3], double *len)
+static HRM_DEVICE int hrm__unit3(const hrm_real dir[3], double d[3], double *len)
 {
     int i;
     for (i = 0; i < 3; ++i) {
@@ -2802,7 +2830,7 @@ static int hrm__unit3(const hrm_real dir[3], double d[3], double *len)
     return 1;
 }
 
-HRM__DEF hrm_status hrm_equiangular_warp(const hrm_real origin[3], const hrm_real dir[3],
+HRM__DEF HRM_DEVICE hrm_status hrm_equiangular_warp(const hrm_real origin[3], const hrm_real dir[3],
                                          const hrm_real light[3], hrm_warp *warp)
 {
     double v[3], d[3], x[3], len, vd = 0, delta, D;
@@ -2832,7 +2860,7 @@ HRM__DEF hrm_status hrm_equiangular_warp(const hrm_real origin[3], const hrm_rea
 /* The real roots of A x^2 + B x + C in their stable form, into r (a double
    root or the linear case's one root twice); returns 0 or 2, or 1 for the
    linear case. */
-static int hrm__quad_roots(double A, double B, double C, double r[2])
+static HRM_DEVICE int hrm__quad_roots(double A, double B, double C, double r[2])
 {
     double disc, q;
     if (A == 0) {
@@ -2852,7 +2880,7 @@ static int hrm__quad_roots(double A, double B, double C, double r[2])
    unit axis u and cos^2 of its half-angle k, on the part where (w + s d).u
    >= vmin: t in (t0, t1), ascending, into out[0..1]; returns how many. The
    roots of (v.u)^2 - k (v.v) = 0 in their stable form. */
-static int hrm__cone_hits(const double w[3], const double d[3], double len, const double u[3], double k,
+static HRM_DEVICE HRM__CALL int hrm__cone_hits(const double w[3], const double d[3], double len, const double u[3], double k,
                           double vmin, hrm_real t0, hrm_real t1, hrm_real out[2])
 {
     double wu = 0, du = 0, wd = 0, ww, A, B, C, r[2];
@@ -2884,7 +2912,7 @@ static int hrm__cone_hits(const double w[3], const double d[3], double len, cons
     return count;
 }
 
-HRM__DEF hrm_status hrm_sphere_breaks(const hrm_real origin[3], const hrm_real dir[3],
+HRM__DEF HRM_DEVICE hrm_status hrm_sphere_breaks(const hrm_real origin[3], const hrm_real dir[3],
                                       const hrm_real light[3], const hrm_real center[3],
                                       hrm_real radius, hrm_real t0, hrm_real t1,
                                       hrm_real out[2], int *count)
@@ -2918,7 +2946,7 @@ HRM__DEF hrm_status hrm_sphere_breaks(const hrm_real origin[3], const hrm_real d
    delta_i)^2) (c_i = power_i / D_i: the lights' irradiance on the ray); t
    from u by Newton's method kept inside a bracket, the last inversion kept
    (the solve asks dt_du at the u it has just mapped). */
-static double hrm__mix_u(const hrm_ray_plan *p, double t)
+static HRM_DEVICE double hrm__mix_u(const hrm_ray_plan *p, double t)
 {
     double u = 0;
     int i;
@@ -2926,7 +2954,7 @@ static double hrm__mix_u(const hrm_ray_plan *p, double t)
     return u;
 }
 
-static double hrm__mix_du(const hrm_ray_plan *p, double t)
+static HRM_DEVICE double hrm__mix_du(const hrm_ray_plan *p, double t)
 {
     double g = 0;
     int i;
@@ -2937,12 +2965,12 @@ static double hrm__mix_du(const hrm_ray_plan *p, double t)
     return g;
 }
 
-static hrm_real hrm__mix_u_of_t(void *user, hrm_real t)
+static HRM_DEVICE hrm_real hrm__mix_u_of_t(void *user, hrm_real t)
 {
     return (hrm_real)hrm__mix_u((const hrm_ray_plan *)user, (double)t);
 }
 
-static double hrm__mix_invert(hrm_ray_plan *p, double want)
+static HRM_DEVICE HRM__CALL double hrm__mix_invert(hrm_ray_plan *p, double want)
 {
     double lo = p->t0, hi = p->t1, t, step, last;
     int it;
@@ -2994,12 +3022,12 @@ static double hrm__mix_invert(hrm_ray_plan *p, double want)
     return t;
 }
 
-static hrm_real hrm__mix_t_of_u(void *user, hrm_real u)
+static HRM_DEVICE hrm_real hrm__mix_t_of_u(void *user, hrm_real u)
 {
     return (hrm_real)hrm__mix_invert((hrm_ray_plan *)user, (double)u);
 }
 
-static hrm_real hrm__mix_dt_du(void *user, hrm_real u)
+static HRM_DEVICE hrm_real hrm__mix_dt_du(void *user, hrm_real u)
 {
     hrm_ray_plan *p = (hrm_ray_plan *)user;
     double g = hrm__mix_du(p, hrm__mix_invert(p, (double)u));
@@ -3008,26 +3036,26 @@ static hrm_real hrm__mix_dt_du(void *user, hrm_real u)
 
 /* A light's weight in the mixture: c times the angle the ray subtends
    from it (atan(+inf) is pi / 2: an infinite ray needs no case). */
-static double hrm__mix_mass(double c, double delta, double D, hrm_real t0, hrm_real t1)
+static HRM_DEVICE double hrm__mix_mass(double c, double delta, double D, hrm_real t0, hrm_real t1)
 {
     return c * (atan(((double)t1 - delta) / D) - atan(((double)t0 - delta) / D));
 }
 
 /* A breakpoint candidate into the plan's list (unsorted; deduplicated and
    sorted at the end; at most 2 HRM_MAX_BREAKS kept). */
-static void hrm__plan_add(hrm_real *list, int *n, hrm_real t, hrm_real t0, hrm_real t1)
+static HRM_DEVICE void hrm__plan_add(hrm_real *list, int *n, hrm_real t, hrm_real t0, hrm_real t1)
 {
     if (t > t0 && t < t1 && *n < 2 * HRM_MAX_BREAKS) list[(*n)++] = t;
 }
 
-static int hrm__vec_ok(const hrm_real v[3])
+static HRM_DEVICE int hrm__vec_ok(const hrm_real v[3])
 {
     return HRM__FINITE(v[0]) && HRM__FINITE(v[1]) && HRM__FINITE(v[2]);
 }
 
 /* Whether w + s d (s = +inf: the direction d) lies inside the cone of
    apex 0, unit axis a and half-angle of cosine ca. */
-static int hrm__in_cone(const double w[3], const double d[3], double s, const double a[3], double ca)
+static HRM_DEVICE int hrm__in_cone(const double w[3], const double d[3], double s, const double a[3], double ca)
 {
     double v[3], va = 0;
     int j;
@@ -3041,7 +3069,7 @@ static int hrm__in_cone(const double w[3], const double d[3], double s, const do
 /* A sphere's shadow under a directional light travelling along unit a:
    where the ray (w + s d from the center) crosses the cylinder of the
    sphere's radius behind it (w + s d).a > 0, into the list. */
-static void hrm__cylinder_hits(const double w[3], const double d[3], double len, const double a[3], double R,
+static HRM_DEVICE void hrm__cylinder_hits(const double w[3], const double d[3], double len, const double a[3], double R,
                                hrm_real t0, hrm_real t1, hrm_real *list, int *n)
 {
     double wa = 0, da = 0, A = 0, B = 0, C = -R * R, r[2];
@@ -3062,7 +3090,7 @@ static void hrm__cylinder_hits(const double w[3], const double d[3], double len,
         if (wa + r[j] * da > 0) hrm__plan_add(list, n, (hrm_real)(r[j] / len), t0, t1);
 }
 
-HRM__DEF hrm_status hrm_light_options(const hrm_light *lights, int nlights, const hrm_sphere *spheres,
+HRM__DEF HRM_DEVICE hrm_status hrm_light_options(const hrm_light *lights, int nlights, const hrm_sphere *spheres,
                                       int nspheres, const hrm_real origin[3], const hrm_real dir[3],
                                       hrm_real t0, hrm_real t1, hrm_ray_plan *plan, hrm_options *options)
 {
@@ -3216,25 +3244,25 @@ fail:
    once, absent terms never. */
 /* exp(-tau) at a node: the closed form evaluated with the node, else from
    the tau the rule computed. */
-static hrm_real hrm__att(const hrm__ctx *c, const hrm__pt *pt, int i, hrm_real tau)
+static HRM_DEVICE hrm_real hrm__att(const hrm__ctx *c, const hrm__pt *pt, int i, hrm_real tau)
 {
     return c->closed ? pt->tr[i] : HRM_EXP(-tau);
 }
 
 /* tau from the transmittance callback's Tr (an underflowed Tr counts as
    the smallest normal number's tau). */
-static void hrm__neg_log(const hrm_real tr[HRM__CH], hrm_real tau[HRM__CH])
+static HRM_DEVICE void hrm__neg_log(const hrm_real tr[HRM__CH], hrm_real tau[HRM__CH])
 {
     hrm_real tiny = HRM__TINY;
     int i;
     for (i = 0; i < HRM__CH; ++i) tau[i] = -HRM_LOG(tr[i] > tiny ? tr[i] : tiny);
 }
 
-static void hrm__tau_of_tr(hrm__pt *pt) { hrm__neg_log(pt->tr, pt->tau); }
+static HRM_DEVICE void hrm__tau_of_tr(hrm__pt *pt) { hrm__neg_log(pt->tr, pt->tau); }
 
 /* tau(t0, t0 + off) where it has a closed form (homogeneous, the
    transmittance callback) or the layer holds it. */
-static void hrm__tau_of(hrm__ctx *c, hrm_real off, hrm_real tau[HRM__CH])
+static HRM_DEVICE void hrm__tau_of(hrm__ctx *c, hrm_real off, hrm_real tau[HRM__CH])
 {
     hrm_real tr[HRM__CH];
     int i;
@@ -3252,7 +3280,7 @@ static void hrm__tau_of(hrm__ctx *c, hrm_real off, hrm_real tau[HRM__CH])
    medium check, sigma_t there too, at offset s_off (a node at a
    breakpoint is sampled on its piece's side: so is the layer's sigma_t,
    from the panel on that side). */
-static void hrm__node_tr(hrm__ctx *c, hrm__pt *pt, hrm_real s_off)
+static HRM_DEVICE void hrm__node_tr(hrm__ctx *c, hrm__pt *pt, hrm_real s_off)
 {
     int i;
     if (c->mcheck) {
@@ -3273,7 +3301,7 @@ static void hrm__node_tr(hrm__ctx *c, hrm__pt *pt, hrm_real s_off)
 
 /* hrm__eval, step 1: the memo. Where abscissa s was evaluated lately (or
    is the ray's end), its callbacks' values are taken again: 1. */
-static int hrm__memo_hit(hrm__ctx *c, hrm_real p, hrm_real s, hrm_real s_raw, hrm__pt *pt)
+static HRM_DEVICE HRM__CALL int hrm__memo_hit(hrm__ctx *c, hrm_real p, hrm_real s, hrm_real s_raw, hrm__pt *pt)
 {
     int i, k;
     if (!c->use_memo) return 0;
@@ -3310,7 +3338,7 @@ static int hrm__memo_hit(hrm__ctx *c, hrm_real p, hrm_real s, hrm_real s_raw, hr
 
 /* hrm__eval, step 2: the medium at s (sa, ss, st: the coefficients the
    source and tau need) and Tr at the node, from wherever tau comes. */
-static void hrm__medium_at(hrm__ctx *c, hrm_real s, hrm_real s_raw, hrm__pt *pt, hrm_real sa[HRM__CH],
+static HRM_DEVICE HRM__CALL void hrm__medium_at(hrm__ctx *c, hrm_real s, hrm_real s_raw, hrm__pt *pt, hrm_real sa[HRM__CH],
                            hrm_real ss[HRM__CH], hrm_real st[HRM__CH])
 {
     int i, medium;
@@ -3356,7 +3384,7 @@ static void hrm__medium_at(hrm__ctx *c, hrm_real s, hrm_real s_raw, hrm__pt *pt,
    shadow ray where nothing scatters), and the largest S / sigma_t seen
    (the weighted mean of Le and Li by sigma_a and sigma_s; where sigma_t
    is not known here, the larger of the two) for the bound on L. */
-static void hrm__source(hrm__ctx *c, hrm_real s, const hrm_real sa[HRM__CH], const hrm_real ss[HRM__CH],
+static HRM_DEVICE HRM__CALL void hrm__source(hrm__ctx *c, hrm_real s, const hrm_real sa[HRM__CH], const hrm_real ss[HRM__CH],
                         const hrm_real st[HRM__CH], hrm_real q[HRM__CH])
 {
     const hrm_medium *m = c->m;
@@ -3401,7 +3429,7 @@ static void hrm__source(hrm__ctx *c, hrm_real s, const hrm_real sa[HRM__CH], con
 }
 
 /* hrm__eval, step 4: the node's values in the memo. */
-static void hrm__memo_store(hrm__ctx *c, hrm_real p, hrm_real s, const hrm_real q[HRM__CH],
+static HRM_DEVICE void hrm__memo_store(hrm__ctx *c, hrm_real p, hrm_real s, const hrm_real q[HRM__CH],
                             const hrm_real st[HRM__CH], const hrm__pt *pt)
 {
     int k = s == c->s_end ? HRM__MEMO : c->memo_next;
@@ -3422,7 +3450,7 @@ static void hrm__memo_store(hrm__ctx *c, hrm_real p, hrm_real s, const hrm_real 
    breakpoint), Tr there, and the source times dt/dp (gq) and sigma_t
    times dt/dp (gs, where the rules integrate tau), by the four steps
    above. */
-static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
+static HRM_DEVICE HRM__CALL void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
 {
     hrm_real sa[HRM__CH], ss[HRM__CH], st[HRM__CH], q[HRM__CH], s, s_raw;
     int i;
@@ -3458,7 +3486,7 @@ static void hrm__eval(hrm__ctx *c, hrm_real p, hrm__pt *pt)
 
 /* Closed-form Tr(t0, t1): no callback for a homogeneous medium, one
    transmittance call otherwise. */
-static void hrm__closed_tr(hrm__ctx *c, hrm_real Tr[HRM__CH])
+static HRM_DEVICE void hrm__closed_tr(hrm__ctx *c, hrm_real Tr[HRM__CH])
 {
     int i;
     if (c->homog) {
@@ -3481,7 +3509,7 @@ static void hrm__closed_tr(hrm__ctx *c, hrm_real Tr[HRM__CH])
    2 uniform Monte Carlo. Uniform samples are generated already sorted
    (the minimum of n uniforms is 1 - U^(1/n), and the rest are uniform
    above it), so tau accumulates without storing them. */
-static void hrm__nodes(hrm__ctx *c, int N, int kind, hrm_real xi,
+static HRM_DEVICE HRM__CALL void hrm__nodes(hrm__ctx *c, int N, int kind, hrm_real xi,
                        hrm_real L[HRM__CH], hrm_real tau[HRM__CH])
 {
     hrm_real w = (c->pb - c->pa) / (hrm_real)N, x = 0, prev_p = c->pa, prev_off = 0, end_off = 0, J;
@@ -3533,7 +3561,7 @@ static void hrm__nodes(hrm__ctx *c, int N, int kind, hrm_real xi,
 /* (1 - exp(-x)) / x for x >= 0, without cancellation near 0 and 0 at
    x = inf: the fraction of a step's length that a constant extinction
    leaves effective. */
-static hrm_real hrm__phi1(hrm_real x)
+static HRM_DEVICE hrm_real hrm__phi1(hrm_real x)
 {
     if (!(x > 0)) return 1;
     if (x < HRM__R(1e-5)) return 1 - x / 2 + x * x / 6;
@@ -3544,12 +3572,12 @@ static hrm_real hrm__phi1(hrm_real x)
 /* Exponentially fitted rules                                              */
 /* ---------------------------------------------------------------------- */
 
-static void hrm__warn(hrm__ctx *c, hrm_status w);
+static HRM_DEVICE void hrm__warn(hrm__ctx *c, hrm_status w);
 
 /* The fit on nodes y[0..n) (ascending, in [-1, 1]): the Legendre
    Vandermonde matrix V[j][k] = P_k(y_j) inverted by Gauss-Jordan with
    partial pivoting (n <= 15; near-Gauss nodes keep it well conditioned). */
-static HRM__NOINLINE void hrm__efit_init(hrm__efit *F, const hrm_real *y, int n)
+static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__efit_init(hrm__efit *F, const hrm_real *y, int n)
 {
     hrm_real V[HRM__EFIT_MAX][2 * HRM__EFIT_MAX];
     int j, k, r;
@@ -3594,7 +3622,7 @@ static HRM__NOINLINE void hrm__efit_init(hrm__efit *F, const hrm_real *y, int n)
    recurrence i_(k-1) = i_(k+1) + (2k + 1) / b i_k from well above n for
    b < 100, the forward one (stable once b > n^2 / 2) above; s_0 =
    (1 - exp(-2b)) / (2b) without cancellation, no overflow at any b. */
-static void hrm__msb(hrm_real b, int n, hrm_real s[HRM__EFIT_MAX])
+static HRM_DEVICE HRM__CALL void hrm__msb(hrm_real b, int n, hrm_real s[HRM__EFIT_MAX])
 {
     int k;
     if (!(b > 0)) {
@@ -3651,7 +3679,7 @@ static void hrm__msb(hrm_real b, int n, hrm_real s[HRM__EFIT_MAX])
    medium, where it gives L <= sup(S / sigma_t) (1 - Tr); widened by the
    spread of those rates elsewhere, so that it never cuts a good value
    where sigma_t varies. What it cuts is added to un. */
-static void hrm__efit_bound_t(const hrm__efit *F, const hrm__pt *pt, hrm_real hl, int last, int i,
+static HRM_DEVICE HRM__CALL void hrm__efit_bound_t(const hrm__efit *F, const hrm__pt *pt, hrm_real hl, int last, int i,
                               hrm_real *out, hrm_real *un)
 {
     hrm_real smin = 0, smax = 0, mt = 0, rmin = 0, rmax = 0, d, lo, hi;
@@ -3712,7 +3740,7 @@ static void hrm__efit_bound_t(const hrm__efit *F, const hrm__pt *pt, hrm_real hl
    in [0, out]): un receives it, else 0. The adaptive rules count it as
    error (they refine there until the nodes see tau), the fixed ones in
    c->unsure (hrm__finish warns where it matters). */
-static void hrm__efit_panel(const hrm__ctx *c, const hrm__efit *F, const hrm__pt *pt, hrm_real hl,
+static HRM_DEVICE HRM__CALL void hrm__efit_panel(const hrm__ctx *c, const hrm__efit *F, const hrm__pt *pt, hrm_real hl,
                             hrm_real out[HRM__CH], hrm_real mass[HRM__CH],
                             hrm_real g[HRM__EFIT_MAX][HRM__CH], hrm_real un[HRM__CH])
 {
@@ -3811,7 +3839,7 @@ static void hrm__efit_panel(const hrm__ctx *c, const hrm__efit *F, const hrm__pt
    never above sup(S / sigma_t) (1 - Tr)), or under the equiangular warp
    gq du, S dt/du held constant over the step in u (Kulla and Fajardo
    2012). */
-static void hrm__march(hrm__ctx *c, int N, hrm_real xi, hrm_real L[HRM__CH],
+static HRM_DEVICE HRM__CALL void hrm__march(hrm__ctx *c, int N, hrm_real xi, hrm_real L[HRM__CH],
                        hrm_real tau[HRM__CH])
 {
     hrm_real span = c->pb - c->pa, off_l, off_r, J, tl[HRM__CH];
@@ -3872,7 +3900,25 @@ static void hrm__march(hrm__ctx *c, int N, hrm_real xi, hrm_real L[HRM__CH],
    half, H/24 (5 f_a + 8 f_m - f_b): fourth order overall, no extra samples.
    tau is nondecreasing, so the midpoint value is kept between its
    neighbours (a thick, sharply varying medium could otherwise overshoot). */
-static void hrm__simpson(hrm__ctx *c, int N, hrm_real L[HRM__CH], hrm_real tau[HRM__CH])
+/* One Simpson panel's parabola against the exact local exponential, added
+   to L: a frame of its own, which a solve without a fit never holds. */
+static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__simpson_fit(hrm__ctx *c, const hrm__pt *a, const hrm__pt *mid,
+                                                                const hrm__pt *b, hrm_real H, hrm_real L[HRM__CH])
+{
+    hrm__pt P3[3];
+    hrm_real out[HRM__CH], mass[HRM__CH], g[HRM__EFIT_MAX][HRM__CH], un[HRM__CH];
+    int i;
+    P3[0] = *a;
+    P3[1] = *mid;
+    P3[2] = *b;
+    hrm__efit_panel(c, &c->ef[0], P3, H / 2, out, mass, g, un);
+    for (i = 0; i < HRM__CH; ++i) {
+        L[i] += out[i];
+        c->unsure[i] += un[i];
+    }
+}
+
+static HRM_DEVICE HRM__CALL void hrm__simpson(hrm__ctx *c, int N, hrm_real L[HRM__CH], hrm_real tau[HRM__CH])
 {
     hrm__pt a, mid, b;
     hrm_real ea[HRM__CH]; /* exp(-tau) * gq at the panel's left end */
@@ -3888,17 +3934,7 @@ static void hrm__simpson(hrm__ctx *c, int N, hrm_real L[HRM__CH], hrm_real tau[H
         hrm__eval(c, pl + H / 2, &mid);
         hrm__eval(c, pr, &b);
         if (c->expo) {
-            /* the panel's parabola against the exact local exponential */
-            hrm__pt P3[3];
-            hrm_real out[HRM__CH], mass[HRM__CH], g[HRM__EFIT_MAX][HRM__CH], un[HRM__CH];
-            P3[0] = a;
-            P3[1] = mid;
-            P3[2] = b;
-            hrm__efit_panel(c, &c->ef[0], P3, H / 2, out, mass, g, un);
-            for (i = 0; i < HRM__CH; ++i) {
-                L[i] += out[i];
-                c->unsure[i] += un[i];
-            }
+            hrm__simpson_fit(c, &a, &mid, &b, H, L);
             a = b;
             c->stats.steps++;
             if (c->status != HRM_OK) return;
@@ -3934,7 +3970,7 @@ static void hrm__simpson(hrm__ctx *c, int N, hrm_real L[HRM__CH], hrm_real tau[H
    Optical depth: y = (tau, A), tau' = sigma_t, A' = exp(-tau) S.
    RTE (marched from t1 toward t0): y = (Tr, L), Tr' = sigma_t Tr,
    L' = sigma_t L - S, in p, so that stepping toward t0 gives Munoz eq. 1. */
-static void hrm__deriv(const hrm__ctx *c, const hrm__pt *pt, const hrm_real *y, hrm_real *k)
+static HRM_DEVICE void hrm__deriv(const hrm__ctx *c, const hrm__pt *pt, const hrm_real *y, hrm_real *k)
 {
     int i;
     for (i = 0; i < HRM__CH; ++i) {
@@ -3962,7 +3998,7 @@ typedef struct hrm__nodes_info {
     hrm_real bw[HRM__MAX_STAGES], ew[HRM__MAX_STAGES]; /* quadrature weights */
 } hrm__nodes_info;
 
-static void hrm__nodes_init(const hrm__tableau *tb, hrm__nodes_info *ni)
+static HRM_DEVICE HRM__CALL void hrm__nodes_init(const hrm__tableau *tb, hrm__nodes_info *ni)
 {
     int i, j, k;
     ni->m = 0;
@@ -3998,7 +4034,7 @@ static void hrm__nodes_init(const hrm__tableau *tb, hrm__nodes_info *ni)
 
 /* The fits a method's rules use: Simpson's three nodes; Gauss-Kronrod's
    Kronrod nodes and its Gauss nodes; a pair's distinct nodes. */
-static void hrm__efit_setup(hrm__ctx *c, const hrm_options *o)
+static HRM_DEVICE HRM__CALL void hrm__efit_setup(hrm__ctx *c, const hrm_options *o)
 {
     hrm_real y[HRM__EFIT_MAX];
     int j, n = 0;
@@ -4024,7 +4060,7 @@ static void hrm__efit_setup(hrm__ctx *c, const hrm_options *o)
 /* The top term of the Newton interpolation series of the values d at the
    distinct nodes, integrated over a step of length h (d is overwritten
    with the divided differences). */
-static hrm_real hrm__newton_top(const hrm__nodes_info *ni, hrm_real *d, hrm_real h)
+static HRM_DEVICE hrm_real hrm__newton_top(const hrm__nodes_info *ni, hrm_real *d, hrm_real h)
 {
     int i, j;
     for (j = 1; j < ni->m; ++j)
@@ -4060,7 +4096,7 @@ static hrm_real hrm__newton_top(const hrm__nodes_info *ni, hrm_real *d, hrm_real
    receives the miss in L's units, per channel; w are the weights of the
    rule on [a, b] (length h in p), pt its nodes, tau_a and tau_b the
    layer's tau at the interval's ends, off_a and off_b their offsets. */
-static void hrm__medium_miss(const hrm__ctx *c, const hrm__pt *const *pt, const hrm_real *w,
+static HRM_DEVICE HRM__CALL void hrm__medium_miss(const hrm__ctx *c, const hrm__pt *const *pt, const hrm_real *w,
                              int n, hrm_real h, const hrm_real *tau_a, const hrm_real *tau_b,
                              hrm_real off_a, hrm_real off_b, hrm_real em[HRM__CH])
 {
@@ -4119,7 +4155,7 @@ static void hrm__medium_miss(const hrm__ctx *c, const hrm__pt *const *pt, const 
 
 /* The quadrature form of a step (see hrm__nodes_info): the distinct nodes
    in ascending order, L' = Tr S at each, no stage sums. */
-static int hrm__rk_quad(hrm__ctx *c, const hrm__nodes_info *ni, const hrm__pt *start,
+static HRM_DEVICE HRM__CALL int hrm__rk_quad(hrm__ctx *c, const hrm__nodes_info *ni, const hrm__pt *start,
                         hrm__pt *end, hrm_real p, hrm_real p_end, const hrm_real *y,
                         hrm_real *ynew, hrm_real *err, hrm_real *both)
 {
@@ -4200,7 +4236,7 @@ static int hrm__rk_quad(hrm__ctx *c, const hrm__nodes_info *ni, const hrm__pt *s
     return endj >= 0;
 }
 
-static int hrm__rk_step(hrm__ctx *c, const hrm__tableau *tb, const hrm__pt *start,
+static HRM_DEVICE HRM__CALL int hrm__rk_step(hrm__ctx *c, const hrm__tableau *tb, const hrm__pt *start,
                         hrm__pt *end, hrm_real p, hrm_real p_end,
                         const hrm_real *y, hrm_real *ynew, hrm_real *err,
                         const hrm__nodes_info *ni, hrm_real *both)
@@ -4281,7 +4317,7 @@ static int hrm__rk_step(hrm__ctx *c, const hrm__tableau *tb, const hrm__pt *star
 }
 
 /* Initial state: (tau, A) = 0 at t0, or (Tr, L) = (1, 0) at t1. */
-static void hrm__ivp_init(const hrm__ctx *c, hrm_real y[HRM__NY])
+static HRM_DEVICE void hrm__ivp_init(const hrm__ctx *c, hrm_real y[HRM__NY])
 {
     hrm__fill(y, HRM__CH, c->rte ? 1 : 0);
     hrm__fill(y + HRM__CH, HRM__CH, 0);
@@ -4290,7 +4326,7 @@ static void hrm__ivp_init(const hrm__ctx *c, hrm_real y[HRM__NY])
 /* Fixed-step IVP driver: Euler, RK4 and Adams-Bashforth 4 (three RK4 steps
    to start, then one new evaluation per step). The optical-depth form
    marches from t0 to t1, the RTE form from t1 to t0. */
-static void hrm__ivp_fixed(hrm__ctx *c, const hrm__tableau *tb, int ab4, int N,
+static HRM_DEVICE HRM__CALL void hrm__ivp_fixed(hrm__ctx *c, const hrm__tableau *tb, int ab4, int N,
                            hrm_real y[HRM__NY])
 {
     hrm_real from = c->rte ? c->pb : c->pa, to = c->rte ? c->pa : c->pb;
@@ -4354,7 +4390,7 @@ static void hrm__ivp_fixed(hrm__ctx *c, const hrm__tableau *tb, int ab4, int N,
 }
 
 /* New evaluations of one step: the distinct nonzero nodes. */
-static int hrm__stage_cost(const hrm__tableau *tb)
+static HRM_DEVICE int hrm__stage_cost(const hrm__tableau *tb)
 {
     int i, j, n = 0;
     for (i = 0; i < tb->s; ++i) {
@@ -4381,7 +4417,7 @@ static int hrm__stage_cost(const hrm__tableau *tb)
 #define HRM__JUMP 16 /* a step with an O(h) error may take rtol/16 of the
                         scale, and at most 16 such steps per solve */
 
-static hrm_real hrm__ratio(hrm__ctx *c, int control, hrm_real p0, hrm_real p1,
+static HRM_DEVICE HRM__CALL hrm_real hrm__ratio(hrm__ctx *c, int control, hrm_real p0, hrm_real p1,
                            const hrm_real *y0, const hrm_real *y1, const hrm_real *err)
 {
     hrm_real worst = 0, frac = HRM_FABS((p1 - p0) / (c->pb - c->pa));
@@ -4435,14 +4471,14 @@ static hrm_real hrm__ratio(hrm__ctx *c, int control, hrm_real p0, hrm_real p1,
    noise, which no per-unit-step share can accept. Such a step is judged
    against a fixed share of the scale instead, so a jump costs a few
    refinements, not a descent to h_min. */
-static int hrm__rough(hrm_real ratio, hrm_real parent_ratio)
+static HRM_DEVICE int hrm__rough(hrm_real ratio, hrm_real parent_ratio)
 {
     return parent_ratio > 1 && ratio > parent_ratio / 2;
 }
 
 /* A rough interval within its fixed share, while the solve has shares left:
    at most HRM__JUMP of them, so that together they stay within rtol. */
-static int hrm__rough_ok(hrm__ctx *c, hrm_real ratio, hrm_real parent, hrm_real p0,
+static HRM_DEVICE int hrm__rough_ok(hrm__ctx *c, hrm_real ratio, hrm_real parent, hrm_real p0,
                          hrm_real p1, const hrm_real *y0, const hrm_real *y1, const hrm_real *err)
 {
     if (c->rough_left <= 0 || !hrm__rough(ratio, parent) ||
@@ -4455,29 +4491,29 @@ static int hrm__rough_ok(hrm__ctx *c, hrm_real ratio, hrm_real parent, hrm_real 
 /* The scale of the solution from a coarse estimate of the whole integral
    (a pilot that costs no extra evaluation): relative tolerances then
    mean a share of the total even where the integral starts at zero. */
-static void hrm__set_scale(hrm__ctx *c, const hrm_real *total)
+static HRM_DEVICE void hrm__set_scale(hrm__ctx *c, const hrm_real *total)
 {
     int n;
     if (c->scale_fixed) return; /* solving again at the scale found */
     for (n = 0; n < HRM__NY; ++n) c->scale[n] = HRM_FABS(total[n]) / 2;
 }
 
-static hrm_real hrm__clamp(hrm_real x, hrm_real lo, hrm_real hi)
+static HRM_DEVICE hrm_real hrm__clamp(hrm_real x, hrm_real lo, hrm_real hi)
 {
     return x < lo ? lo : x > hi ? hi : x;
 }
 
 /* An accepted step or interval adds its estimate of L's error. */
-static void hrm__warn(hrm__ctx *c, hrm_status w);
+static HRM_DEVICE void hrm__warn(hrm__ctx *c, hrm_status w);
 
-static void hrm__accepted(hrm__ctx *c, const hrm_real *err)
+static HRM_DEVICE void hrm__accepted(hrm__ctx *c, const hrm_real *err)
 {
     int i;
     if (c->noise_only) hrm__warn(c, HRM_WARN_ROUNDOFF);
     for (i = 0; i < HRM__CH; ++i) c->err_acc[i] += HRM_FABS(err[HRM__CH + i]);
 }
 
-static void hrm__warn(hrm__ctx *c, hrm_status w)
+static HRM_DEVICE void hrm__warn(hrm__ctx *c, hrm_status w)
 {
     if (c->warning == HRM_OK || c->warning == HRM_WARN_RTOL_CLIPPED) c->warning = w;
 }
@@ -4485,7 +4521,7 @@ static void hrm__warn(hrm__ctx *c, hrm_status w)
 /* What a refusal at h_min means: the floor the caller or the range set
    (HRM_WARN_H_MIN), or t's own resolution far from the origin
    (HRM_WARN_ROUNDOFF). */
-static hrm_status hrm__h_min_status(const hrm__ctx *c)
+static HRM_DEVICE hrm_status hrm__h_min_status(const hrm__ctx *c)
 {
     return c->h_min <= c->h_res ? HRM_WARN_ROUNDOFF : HRM_WARN_H_MIN;
 }
@@ -4503,7 +4539,7 @@ static hrm_status hrm__h_min_status(const hrm__ctx *c)
    rtol 1e-2..1e-10, both warps: median achieved/rtol 0.014-0.031, worst
    HRM_OK run 2.3 (with 2 instead of 4: 3.9). Fehlberg and Cash-Karp
    return the order their estimate is of: unchanged. */
-static void hrm__pair_calibrate(const hrm__ctx *c, const hrm__tableau *tb, hrm_real hs,
+static HRM_DEVICE void hrm__pair_calibrate(const hrm__ctx *c, const hrm__tableau *tb, hrm_real hs,
                                 const hrm_real *y0, const hrm_real *y1, hrm_real *e)
 {
     hrm_real frac = HRM_FABS(hs / (c->pb - c->pa));
@@ -4522,7 +4558,7 @@ static void hrm__pair_calibrate(const hrm__ctx *c, const hrm__tableau *tb, hrm_r
    budget about to run out finishes the ray in even unchecked steps
    (HRM_WARN_MAX_EVALS); a step refused at h_min is taken anyway
    (HRM_WARN_H_MIN). */
-static void hrm__ivp_adaptive(hrm__ctx *c, const hrm__tableau *tb, hrm_control control,
+static HRM_DEVICE HRM__CALL void hrm__ivp_adaptive(hrm__ctx *c, const hrm__tableau *tb, hrm_control control,
                               hrm_real h0, hrm_real y[HRM__NY])
 {
     hrm_real from = c->rte ? c->pb : c->pa, to = c->rte ? c->pa : c->pb;
@@ -4658,7 +4694,7 @@ typedef struct hrm__ns_iv {
 
 /* Simpson and trapezoid on one interval given tau at its left end:
    val = the increments of (tau, L), err = Simpson - trapezoid. */
-static void hrm__ns_rule(const hrm__ctx *c, const hrm__pt *a, const hrm__pt *m,
+static HRM_DEVICE HRM__CALL void hrm__ns_rule(const hrm__ctx *c, const hrm__pt *a, const hrm__pt *m,
                          const hrm__pt *b, const hrm_real *tau_a,
                          hrm_real *val, hrm_real *err)
 {
@@ -4692,7 +4728,7 @@ static void hrm__ns_rule(const hrm__ctx *c, const hrm__pt *a, const hrm__pt *m,
    of 5 keeps a factor 3 of margin: on the bench's smooth scenes (rtol
    1e-2..1e-10) the worst HRM_OK run was at 1.0 rtol, 11 with 15. tau
    stays the halves' sum: nondecreasing. */
-static void hrm__ns_five(const hrm__ctx *c, const hrm__pt *a, const hrm__pt *ql,
+static HRM_DEVICE HRM__CALL void hrm__ns_five(const hrm__ctx *c, const hrm__pt *a, const hrm__pt *ql,
                          const hrm__pt *m, const hrm__pt *qr, const hrm__pt *b,
                          const hrm_real *tau_a, hrm_real *V, hrm_real *E, hrm_real *M)
 {
@@ -4726,7 +4762,7 @@ static void hrm__ns_five(const hrm__ctx *c, const hrm__pt *a, const hrm__pt *ql,
 
 /* An interval's estimate of L's error: the rule's, or the medium check's
    (hrm__medium_miss) where that is larger. */
-static void hrm__with_miss(hrm_real *E, const hrm_real *M)
+static HRM_DEVICE void hrm__with_miss(hrm_real *E, const hrm_real *M)
 {
     int i;
     for (i = 0; i < HRM__CH; ++i)
@@ -4736,7 +4772,7 @@ static void hrm__with_miss(hrm_real *E, const hrm_real *M)
 /* Nested Simpson left to right from one interval: tau at an interval's
    left end (acc) is final when it is judged, and its nodes' tau come from
    its own sigma_t samples as in hrm__simpson. */
-static void hrm__ns_local_run(hrm__ctx *c, const hrm__pt *a, const hrm__pt *m, const hrm__pt *b,
+static HRM_DEVICE HRM__CALL void hrm__ns_local_run(hrm__ctx *c, const hrm__pt *a, const hrm__pt *m, const hrm__pt *b,
                               hrm_real acc[HRM__NY], hrm__ns_iv *stack)
 {
     hrm__ns_iv cur;
@@ -4806,14 +4842,14 @@ static void hrm__ns_local_run(hrm__ctx *c, const hrm__pt *a, const hrm__pt *m, c
 
 /* Its stack: in the caller's workspace, or else in a frame of its own,
    held only while a finish runs (a storage-full solve: rare). */
-static HRM__NOINLINE void hrm__ns_local_on_stack(hrm__ctx *c, const hrm__pt *a, const hrm__pt *m,
+static HRM_DEVICE HRM__NOINLINE void hrm__ns_local_on_stack(hrm__ctx *c, const hrm__pt *a, const hrm__pt *m,
                                                  const hrm__pt *b, hrm_real acc[HRM__NY])
 {
     hrm__ns_iv stack[HRM_MAX_DEPTH + 1];
     hrm__ns_local_run(c, a, m, b, acc, stack);
 }
 
-static void hrm__ns_local(hrm__ctx *c, const hrm__pt *a, const hrm__pt *m, const hrm__pt *b,
+static HRM_DEVICE void hrm__ns_local(hrm__ctx *c, const hrm__pt *a, const hrm__pt *m, const hrm__pt *b,
                           hrm_real acc[HRM__NY])
 {
     if (c->finish) hrm__ns_local_run(c, a, m, b, acc, c->finish);
@@ -4840,7 +4876,7 @@ typedef struct hrm__gk_io {
    of bisection the closest pair is 1.8e-4 of the half's width for K15 and
    1.4e-2 for K7 (gap, in hrm__gk_pair). Closer, two nodes would round to
    one t and be evaluated twice. */
-static int hrm__gk_resolved(const hrm__ctx *c, hrm_real a, hrm_real b)
+static HRM_DEVICE int hrm__gk_resolved(const hrm__ctx *c, hrm_real a, hrm_real b)
 {
     /* (it matters on a ray farther from the origin than it is long;
        nearer, h_min stops the bisection long before) */
@@ -4848,7 +4884,7 @@ static int hrm__gk_resolved(const hrm__ctx *c, hrm_real a, hrm_real b)
 }
 
 /* The source S at a sample (per unit length: its g divided by ds/dp). */
-static void hrm__source_of(const hrm__pt *pt, int ch, hrm_real *S)
+static HRM_DEVICE void hrm__source_of(const hrm__pt *pt, int ch, hrm_real *S)
 {
     *S = pt->J > 0 ? pt->gq[ch] / pt->J : 0;
 }
@@ -4863,7 +4899,7 @@ static void hrm__source_of(const hrm__pt *pt, int ch, hrm_real *S)
    over the unsampled stretch (a thin layer at the camera or at the
    surface, a shadow's edge between the end and the first node) counts as
    error. */
-static hrm_real hrm__gk_ends_miss(const hrm__ctx *c, const hrm__gk_pair *R, const hrm__pt *pt,
+static HRM_DEVICE HRM__CALL hrm_real hrm__gk_ends_miss(const hrm__ctx *c, const hrm__gk_pair *R, const hrm__pt *pt,
                                   const hrm_real *f, hrm_real hl, const hrm_real *Sa, const hrm_real *Sb,
                                   int ch)
 {
@@ -4896,7 +4932,7 @@ static hrm_real hrm__gk_ends_miss(const hrm__ctx *c, const hrm__gk_pair *R, cons
    whatever the nodes see, 0 where Tr underflowed at all of them (L = 0
    with HRM_OK at sigma_t T = 1e6). Its integral of Tr, at the first
    node's source, is the error (ta: tau at a). */
-static hrm_real hrm__gk_deep_start(const hrm__ctx *c, const hrm__gk_pair *R, const hrm__pt *pt,
+static HRM_DEVICE hrm_real hrm__gk_deep_start(const hrm__ctx *c, const hrm__gk_pair *R, const hrm__pt *pt,
                                    const hrm_real *f, hrm_real hl, const hrm_real *Sa, hrm_real ta, int ch)
 {
     hrm_real tx = c->coupled ? -HRM_LOG(pt[0].gq[ch] != 0 && f[0] > 0 ? f[0] / pt[0].gq[ch] : HRM__TINY)
@@ -4912,7 +4948,7 @@ static hrm_real hrm__gk_deep_start(const hrm__ctx *c, const hrm__gk_pair *R, con
    it misses by less than |K - G| (by h / l of it); a peak that the
    parent's node sat on and these nodes straddle misses by the peak: then
    K itself is in doubt, and the halves check it again. */
-static hrm_real hrm__gk_check_miss(const hrm__ctx *c, const hrm__gk_pair *R, const hrm__pt *pt,
+static HRM_DEVICE hrm_real hrm__gk_check_miss(const hrm__ctx *c, const hrm__gk_pair *R, const hrm__pt *pt,
                                    const hrm_real *f, hrm_real hl, const hrm_real *lw, const hrm__gk_io *io,
                                    int ch)
 {
@@ -4936,7 +4972,7 @@ static hrm_real hrm__gk_check_miss(const hrm__ctx *c, const hrm__gk_pair *R, con
    epsilons of the integral of |f| (QUADPACK's floor of round-off), plus
    what the checks above and the medium check (hrm__medium_miss) find. The
    callers turn it into an estimate of K's (hrm__wf_split). */
-static void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, const hrm_real *tau_a,
+static HRM_DEVICE HRM__CALL void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, const hrm_real *tau_a,
                     hrm_real *K, hrm_real *ek, hrm__gk_io *io)
 {
     const hrm__gk_pair *R = c->gk;
@@ -5062,7 +5098,7 @@ static void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, const hrm_real *tau_a,
    surface could pass unseen (hrm__gk). Two evaluations. S receives the
    source there; has[1] is 0 on an infinite ray (its far end is where the
    warp stops: no surface, no layer there). */
-static void hrm__gk_ends(hrm__ctx *c, hrm_real S[2][HRM__CH], int has[2])
+static HRM_DEVICE void hrm__gk_ends(hrm__ctx *c, hrm_real S[2][HRM__CH], int has[2])
 {
     hrm__pt e;
     int i, k;
@@ -5077,7 +5113,7 @@ static void hrm__gk_ends(hrm__ctx *c, hrm_real S[2][HRM__CH], int has[2])
    (acc), its own increments and estimates relative to that end given (K0,
    E0); a refused interval is split in two and its samples discarded. The
    source at a0 and b0 where sampled (Sa, Sb, or 0). */
-static void hrm__gk_local_one(hrm__ctx *c, hrm_real a0, hrm_real b0, const hrm_real *K0,
+static HRM_DEVICE HRM__CALL void hrm__gk_local_one(hrm__ctx *c, hrm_real a0, hrm_real b0, const hrm_real *K0,
                               const hrm_real *E0, const hrm_real *Sa, const hrm_real *Sb,
                               hrm_real acc[HRM__NY])
 {
@@ -5144,7 +5180,7 @@ static void hrm__gk_local_one(hrm__ctx *c, hrm_real a0, hrm_real b0, const hrm_r
    first, relative to tau at their own left ends (their sum is the scale);
    then each is finished left to right (hrm__gk_local_one), so tau at each
    left end is final. */
-static HRM__NOINLINE void hrm__gk_local(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
+static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__gk_local(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
 {
     hrm_real K0[HRM_GK_INITIAL][HRM__NY], E0[HRM_GK_INITIAL][HRM__NY];
     hrm_real span = c->pb - c->pa, zero[HRM__NY], tot[HRM__NY], S[2][HRM__CH];
@@ -5221,7 +5257,7 @@ typedef struct hrm__wf {
 } hrm__wf;
 
 /* The interval's increments and estimates by its rule. */
-static void hrm__wf_rule(hrm__ctx *c, hrm__wf *w, hrm__iv *v, int b_sample)
+static HRM_DEVICE HRM__CALL void hrm__wf_rule(hrm__ctx *c, hrm__wf *w, hrm__iv *v, int b_sample)
 {
     hrm_real zero[HRM__NY];
     int i;
@@ -5264,7 +5300,7 @@ static void hrm__wf_rule(hrm__ctx *c, hrm__wf *w, hrm__iv *v, int b_sample)
    of 8 let smoke through at 5.7 rtol, a fall of 16 once made a budget of
    65 samples 100 times worse than a uniform Simpson rule on a smooth
    light.) Gauss-Kronrod: hrm__wf_split. Never below 16 epsilons of V. */
-static void hrm__wf_trust(const hrm__ctx *c, const hrm__iv *par, hrm__iv *l, hrm__iv *r,
+static HRM_DEVICE HRM__CALL void hrm__wf_trust(const hrm__ctx *c, const hrm__iv *par, hrm__iv *l, hrm__iv *r,
                           hrm_real fall, hrm_real cap, int square)
 {
     int j;
@@ -5290,7 +5326,7 @@ static void hrm__wf_trust(const hrm__ctx *c, const hrm__iv *par, hrm__iv *l, hrm
     hrm__with_miss(r->E, r->M);
 }
 
-static int hrm__locate_jump(hrm__ctx *c, hrm_real pl, hrm_real pr, hrm_real *tj);
+static HRM_DEVICE int hrm__locate_jump(hrm__ctx *c, hrm_real pl, hrm_real pr, hrm_real *tj);
 
 /* A half that keeps 30% of its parent's raw estimate, three splits in a
    row, does not shrink like a smooth integrand's (1/32 for nested
@@ -5300,7 +5336,7 @@ static int hrm__locate_jump(hrm__ctx *c, hrm_real pl, hrm_real pr, hrm_real *tj)
    finds none (a steep but smooth integrand: a dense front seen through
    the equiangular warp) the solve goes on without looking again, instead
    of being repeated. */
-static void hrm__wf_rough(hrm__ctx *c, const hrm__iv *par, hrm__iv *l, hrm__iv *r)
+static HRM_DEVICE HRM__CALL void hrm__wf_rough(hrm__ctx *c, const hrm__iv *par, hrm__iv *l, hrm__iv *r)
 {
     hrm_real dl = 0, dr = 0, dp = 0;
     int j;
@@ -5336,7 +5372,7 @@ static void hrm__wf_rough(hrm__ctx *c, const hrm__iv *par, hrm__iv *l, hrm__iv *
 
 /* Split interval k in place into its halves. Nested Simpson: the halves
    keep the five samples and add their quarter points (4 evaluations). */
-static void hrm__wf_split(hrm__ctx *c, hrm__wf *w, int k)
+static HRM_DEVICE HRM__CALL void hrm__wf_split(hrm__ctx *c, hrm__wf *w, int k)
 {
     hrm__iv par = w->iv[k], *l = &w->iv[k], *r = &w->iv[k + 1];
     int j, b_sample = k + 1 < w->n ? w->iv[k + 1].s[0] : w->end;
@@ -5416,7 +5452,7 @@ static void hrm__wf_split(hrm__ctx *c, hrm__wf *w, int k)
    round-off does not decide). Returns 1 when the tolerance is met. The weighted
    tau estimates add up to at most rtol min(tau, 1): L's relative error
    from tau is at most their sum where its light comes from. */
-static int hrm__wf_sum(hrm__ctx *c, hrm__wf *w, hrm_real acc[HRM__NY], int *pick)
+static HRM_DEVICE HRM__CALL int hrm__wf_sum(hrm__ctx *c, hrm__wf *w, hrm_real acc[HRM__NY], int *pick)
 {
     hrm_real tau[HRM__CH], L[HRM__CH], EL[HRM__CH], Et[HRM__CH], tolL[HRM__CH], tolt[HRM__CH];
     hrm_real worst = -1;
@@ -5478,7 +5514,7 @@ static int hrm__wf_sum(hrm__ctx *c, hrm__wf *w, hrm_real acc[HRM__NY], int *pick
 
 /* Returns 1 if the intervals filled their storage before the tolerance
    was met (the caller finishes or warns), else 0. */
-static int hrm__worst_first(hrm__ctx *c, hrm__wf *w, hrm_real acc[HRM__NY])
+static HRM_DEVICE HRM__CALL int hrm__worst_first(hrm__ctx *c, hrm__wf *w, hrm_real acc[HRM__NY])
 {
     int cost = w->pool ? 4 : 2 * c->gk->n, roundoff = 0, k, ch;
     for (;;) {
@@ -5524,7 +5560,7 @@ static int hrm__worst_first(hrm__ctx *c, hrm__wf *w, hrm_real acc[HRM__NY])
 
 /* After a worst-first phase that filled its storage: the scale of the
    total found, and the sums restarted for a left-to-right finish. */
-static void hrm__finish_scale(hrm__ctx *c, const hrm_real *tot, hrm_real acc[HRM__NY])
+static HRM_DEVICE void hrm__finish_scale(hrm__ctx *c, const hrm_real *tot, hrm_real acc[HRM__NY])
 {
     int i;
     if (!c->scale_fixed)
@@ -5535,7 +5571,7 @@ static void hrm__finish_scale(hrm__ctx *c, const hrm_real *tot, hrm_real acc[HRM
 
 /* Gauss-Kronrod, global mode: worst first from n0 intervals while they fit
    in HRM_GK_INTERVALS, then each is finished left to right. */
-static void hrm__gk_global(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
+static HRM_DEVICE HRM__CALL void hrm__gk_global(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
 {
     hrm__iv *iv = c->gks->iv;
     hrm__wf w;
@@ -5576,7 +5612,7 @@ static void hrm__gk_global(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
    fit in HRM_NS_INTERVALS, then each interval whose estimate exceeds its
    share of the tolerance (hrm__ratio, at the scale of the total found) is
    finished left to right from its two halves. */
-static void hrm__nested_simpson(hrm__ctx *c, int panels, hrm_real acc[HRM__NY])
+static HRM_DEVICE HRM__CALL void hrm__nested_simpson(hrm__ctx *c, int panels, hrm_real acc[HRM__NY])
 {
     hrm__iv *iv = c->ns->iv;
     hrm__pt *pool = c->ns->pool;
@@ -5635,7 +5671,7 @@ static void hrm__nested_simpson(hrm__ctx *c, int panels, hrm_real acc[HRM__NY])
 /* Dispatcher and public functions                                         */
 /* ---------------------------------------------------------------------- */
 
-HRM__DEF const char *hrm_status_string(hrm_status status)
+HRM__DEF HRM_DEVICE const char *hrm_status_string(hrm_status status)
 {
     switch (status) {
 #define HRM__STATUS_CASE(name, value, text) case name: return text;
@@ -5645,18 +5681,18 @@ HRM__DEF const char *hrm_status_string(hrm_status status)
     }
 }
 
-HRM__DEF const char *hrm_method_name(hrm_method method)
+HRM__DEF HRM_DEVICE const char *hrm_method_name(hrm_method method)
 {
     if ((int)method < 0 || (int)method >= (int)HRM_METHOD_COUNT) return "?";
     return hrm__methods[method].name;
 }
 
-HRM__DEF int hrm_version(void)
+HRM__DEF HRM_DEVICE int hrm_version(void)
 {
     return HRM_VERSION_MAJOR * 10000 + HRM_VERSION_MINOR * 100 + HRM_VERSION_PATCH;
 }
 
-HRM__DEF hrm_options hrm_default_options(hrm_method method)
+HRM__DEF HRM_DEVICE hrm_options hrm_default_options(hrm_method method)
 {
     hrm_options o;
     memset(&o, 0, sizeof o);
@@ -5693,7 +5729,7 @@ HRM__DEF hrm_options hrm_default_options(hrm_method method)
 
 /* The bytes of need bit k (1u << k), rounded up to 16 (the alignment of
    the caller's workspace, which holds them in this order). */
-static size_t hrm__need_bytes(int k)
+static HRM_DEVICE size_t hrm__need_bytes(int k)
 {
     static const size_t bytes[HRM__NEEDS] = {sizeof(hrm__tau), sizeof(hrm__memo) * (HRM__MEMO + 1),
                                              sizeof(hrm__efit) * 2, sizeof(hrm__ns_store),
@@ -5704,7 +5740,7 @@ static size_t hrm__need_bytes(int k)
 /* What a solve with resolved options o may need, whatever its medium
    (the layer: sigma callbacks may need it with any method); the storage
    hrm__needs asks for at the solve is a part of it. */
-static unsigned hrm__may_need(const hrm_options *o)
+static HRM_DEVICE unsigned hrm__may_need(const hrm_options *o)
 {
     int d = hrm__driver(o);
     return HRM__NEED_LAYER | (hrm__is_adaptive(o->method) ? HRM__NEED_MEMO : 0u) |
@@ -5713,7 +5749,7 @@ static unsigned hrm__may_need(const hrm_options *o)
 }
 
 /* What hrm_workspace_size says for resolved options o. */
-static size_t hrm__ws_bytes(const hrm_options *o)
+static HRM_DEVICE size_t hrm__ws_bytes(const hrm_options *o)
 {
     size_t n = 0;
     int k;
@@ -5724,7 +5760,7 @@ static size_t hrm__ws_bytes(const hrm_options *o)
 
 /* The least evaluations one piece of the ray costs the method (its first
    step, or its initial panels or intervals). */
-static long hrm__piece_cost(const hrm_options *o)
+static HRM_DEVICE long hrm__piece_cost(const hrm_options *o)
 {
     const hrm__method_info *mi = &hrm__methods[o->method];
     return mi->family == HRM__PAIR ? hrm__stage_cost(mi->tb) + 1L
@@ -5733,7 +5769,7 @@ static long hrm__piece_cost(const hrm_options *o)
          : 0L;
 }
 
-static hrm_status hrm__resolve(const hrm_options *in, hrm_options *o, int tau_in_t)
+static HRM_DEVICE HRM__CALL hrm_status hrm__resolve(const hrm_options *in, hrm_options *o, int tau_in_t)
 {
     hrm_options d = hrm_default_options(in ? in->method : HRM_METHOD_DEFAULT);
     const hrm__method_info *mi;
@@ -5823,7 +5859,7 @@ static hrm_status hrm__resolve(const hrm_options *in, hrm_options *o, int tau_in
    its order: the interval, the options (resolved into o), the
    breakpoints, the warp's parameters, the medium (flags, sigma given with
    the other coefficients, feature; the constants, then their range). */
-static hrm_status hrm__validate(const hrm_medium *m, hrm_real t0, hrm_real t1, const hrm_options *in,
+static HRM_DEVICE HRM__CALL hrm_status hrm__validate(const hrm_medium *m, hrm_real t0, hrm_real t1, const hrm_options *in,
                                 int tr_only, hrm_options *o)
 {
     hrm_real range = hrm__range(t1 - t0);
@@ -5859,7 +5895,7 @@ static hrm_status hrm__validate(const hrm_medium *m, hrm_real t0, hrm_real t1, c
 
 /* The source terms a solve integrates: Le where sigma_a (or emission per
    length) can weigh it, Li where sigma_s can; neither for Tr alone. */
-static void hrm__sources(const hrm_medium *m, int tr_only, int *use_le, int *use_li)
+static HRM_DEVICE void hrm__sources(const hrm_medium *m, int tr_only, int *use_le, int *use_li)
 {
     int homog = (m->flags & HRM_MEDIUM_HOMOGENEOUS) != 0;
     *use_le = !tr_only && m->Le && ((m->flags & HRM_EMISSION_PER_LENGTH) || homog || m->sigma_a || m->sigma);
@@ -5871,7 +5907,7 @@ static void hrm__sources(const hrm_medium *m, int tr_only, int *use_le, int *use
    transmittance layer, the stream or the rules' own tau, as
    options.tau_mode (resolved) says; tau alone (no source) from the layer,
    which needs no nodes. */
-static hrm__tau_src hrm__tau_source(const hrm_medium *m, const hrm_options *o, int sources)
+static HRM_DEVICE hrm__tau_src hrm__tau_source(const hrm_medium *m, const hrm_options *o, int sources)
 {
     return (m->flags & HRM_MEDIUM_HOMOGENEOUS) ? HRM__TAU_HOMOG
          : o->form == HRM_FORM_RTE && hrm__methods[o->method].rte ? HRM__TAU_STATE
@@ -5882,7 +5918,7 @@ static hrm__tau_src hrm__tau_source(const hrm_medium *m, const hrm_options *o, i
 }
 
 /* Whether Tr is known at every node before the rule runs. */
-static int hrm__tau_closed(hrm__tau_src src)
+static HRM_DEVICE int hrm__tau_closed(hrm__tau_src src)
 {
     return src == HRM__TAU_HOMOG || src == HRM__TAU_TRCB || src == HRM__TAU_LAYER || src == HRM__TAU_STREAM;
 }
@@ -5890,7 +5926,7 @@ static int hrm__tau_closed(hrm__tau_src src)
 /* The context of one solve: medium, flags, tolerances, the warp and the
    step bounds; layer, memo, ef: the storage hrm__needs asked for (else
    NULL). Returns an error, or HRM_OK with c ready to dispatch. */
-static hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, hrm__memo *memo, hrm__efit *ef,
+static HRM_DEVICE HRM__CALL hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, hrm__memo *memo, hrm__efit *ef,
                              const hrm_medium *m, hrm_real t0, hrm_real t1, const hrm_options *o,
                              int tr_only)
 {
@@ -6020,7 +6056,7 @@ static hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, hrm__memo *memo, hrm_
     return HRM_OK;
 }
 
-static void hrm__adaptive_once(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM__NY])
+static HRM_DEVICE void hrm__adaptive_once(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM__NY])
 {
     const hrm__method_info *mi = &hrm__methods[o->method];
     hrm__fill(c->err_acc, HRM__CH, 0);
@@ -6041,7 +6077,7 @@ static void hrm__adaptive_once(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM
    method is run once more at the scale found, and if that still does not
    hold, HRM_WARN_TOLERANCE says so with the estimate in result.error.
    (Munoz's and Gonterman's controllers keep their own definitions.) */
-static void hrm__adaptive(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM__NY])
+static HRM_DEVICE HRM__CALL void hrm__adaptive(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM__NY])
 {
     const hrm__method_info *mi = &hrm__methods[o->method];
     int pass, n;
@@ -6078,7 +6114,7 @@ static void hrm__adaptive(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM__NY]
 }
 
 /* Run the method: y receives (tau, L), or (Tr, L) in the RTE form. */
-static void hrm__dispatch_one(hrm__ctx *c, const hrm_options *o, int N, hrm_real y[HRM__NY])
+static HRM_DEVICE void hrm__dispatch_one(hrm__ctx *c, const hrm_options *o, int N, hrm_real y[HRM__NY])
 {
     const hrm__method_info *mi = &hrm__methods[o->method];
     hrm__fill(y, HRM__NY, 0);
@@ -6099,7 +6135,7 @@ static void hrm__dispatch_one(hrm__ctx *c, const hrm_options *o, int N, hrm_real
 }
 
 /* The parameter of an offset from t0: the warp's inverse. */
-static hrm_real hrm__unmap(hrm__ctx *c, hrm_real off)
+static HRM_DEVICE HRM__CALL hrm_real hrm__unmap(hrm__ctx *c, hrm_real off)
 {
     hrm_real p;
     switch (c->warp) {
@@ -6130,14 +6166,10 @@ static hrm_real hrm__unmap(hrm__ctx *c, hrm_real off)
    sum; Adams-Bashforth restarts with RK4 on each), and composed: L =
    sum of the pieces' L, each attenuated by Tr up to its start where its
    rule integrated tau from its own start (coupled tau, the RTE form). */
-static void hrm__solve_pieces(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM__NY])
-{
-    const hrm__method_info *mi = &hrm__methods[o->method];
-    hrm_real P[HRM_MAX_BREAKS + 2], S[HRM_MAX_BREAKS + 2], pa = c->pa, pb = c->pb;
-    hrm_real yk[HRM__NY], err[HRM__CH], acc[HRM__CH];
-    int n = c->nbrk + 1, N[HRM_MAX_BREAKS + 1], k, i, fixed;
-    long max_evals = c->max_evals;
+static HRM_DEVICE void hrm__solve_broken(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM__NY]);
 
+static HRM_DEVICE void hrm__solve_pieces(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM__NY])
+{
     if (c->src == HRM__TAU_STREAM) {
         c->sm.n = 0;
         c->sm.start = 0;
@@ -6150,6 +6182,21 @@ static void hrm__solve_pieces(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM_
         hrm__dispatch_one(c, o, o->steps, y);
         return;
     }
+    hrm__solve_broken(c, o, y);
+}
+
+/* The pieces between breakpoints, each solved on its own; the tables of
+   their ends in a frame of its own, which a ray without breakpoints never
+   holds. */
+static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__solve_broken(hrm__ctx *c, const hrm_options *o,
+                                                                 hrm_real y[HRM__NY])
+{
+    const hrm__method_info *mi = &hrm__methods[o->method];
+    hrm_real P[HRM_MAX_BREAKS + 2], S[HRM_MAX_BREAKS + 2], pa = c->pa, pb = c->pb;
+    hrm_real yk[HRM__NY], err[HRM__CH], acc[HRM__CH];
+    int n = c->nbrk + 1, N[HRM_MAX_BREAKS + 1], k, i, fixed;
+    long max_evals = c->max_evals;
+
     P[0] = pa;
     P[n] = pb;
     S[0] = -HRM__R(HUGE_VAL);
@@ -6219,7 +6266,7 @@ static void hrm__solve_pieces(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM_
 
 /* The source S (per unit length) in every channel at parameter p, and the
    offset there. */
-static void hrm__source_at(hrm__ctx *c, hrm_real p, hrm_real S[HRM__CH], hrm_real *off)
+static HRM_DEVICE void hrm__source_at(hrm__ctx *c, hrm_real p, hrm_real S[HRM__CH], hrm_real *off)
 {
     hrm__pt pt;
     int i;
@@ -6237,7 +6284,7 @@ static void hrm__source_at(hrm__ctx *c, hrm_real p, hrm_real S[HRM__CH], hrm_rea
    jump of at least 1% of the larger side is kept, as t, in *tj; returns
    0 where there is none (a smooth integrand that merely refines
    slowly). */
-static int hrm__locate_jump(hrm__ctx *c, hrm_real pl, hrm_real pr, hrm_real *tj)
+static HRM_DEVICE HRM__CALL int hrm__locate_jump(hrm__ctx *c, hrm_real pl, hrm_real pr, hrm_real *tj)
 {
     hrm_real Sl[HRM__CH], Sr[HRM__CH], Sm[HRM__CH];
     hrm_real ol, or_, om, d = 0, big = 0;
@@ -6276,7 +6323,7 @@ static int hrm__locate_jump(hrm__ctx *c, hrm_real pl, hrm_real pr, hrm_real *tj)
 
 /* Make offset off (strictly inside, not yet one) a breakpoint, reported
    as a located jump; 0 where there is no room or it is not inside. */
-static int hrm__add_jump(hrm__ctx *c, hrm_real off)
+static HRM_DEVICE int hrm__add_jump(hrm__ctx *c, hrm_real off)
 {
     int k;
     if (c->njumps >= HRM_MAX_JUMPS || c->nbrk >= HRM_MAX_BREAKS) return 0;
@@ -6292,7 +6339,7 @@ static int hrm__add_jump(hrm__ctx *c, hrm_real off)
 
 /* sigma_t summed over channels at offset off (side: which side of a
    breakpoint there). */
-static hrm_real hrm__sigma_sum(hrm__ctx *c, hrm_real off, int side, hrm_real st[HRM__CH])
+static HRM_DEVICE hrm_real hrm__sigma_sum(hrm__ctx *c, hrm_real off, int side, hrm_real st[HRM__CH])
 {
     hrm_real sum = 0;
     int i;
@@ -6302,7 +6349,7 @@ static hrm_real hrm__sigma_sum(hrm__ctx *c, hrm_real off, int side, hrm_real st[
 }
 
 /* Whether sigma_t changes by a factor 2 or more between two samples. */
-static int hrm__sigma_differs(hrm_real fa, hrm_real fb)
+static HRM_DEVICE int hrm__sigma_differs(hrm_real fa, hrm_real fb)
 {
     hrm_real big = fa > fb ? fa : fb;
     return HRM_FABS(fb - fa) >= big / 2 && big > 0;
@@ -6321,7 +6368,7 @@ static int hrm__sigma_differs(hrm_real fa, hrm_real fb)
    end moves no rule's estimate): a medium that fades out at the ray's
    ends (a sphere of smoke entered and left) costs a few lookups at each,
    not fifty. */
-static int hrm__locate_sigma_jump(hrm__ctx *c, hrm_real a, hrm_real b, hrm_real fa, hrm_real fb,
+static HRM_DEVICE HRM__CALL int hrm__locate_sigma_jump(hrm__ctx *c, hrm_real a, hrm_real b, hrm_real fa, hrm_real fb,
                                   hrm_real *off)
 {
     hrm_real st[HRM__CH], a0 = a, b0 = b;
@@ -6388,7 +6435,7 @@ static int hrm__locate_sigma_jump(hrm__ctx *c, hrm_real a, hrm_real b, hrm_real 
    a quarter of a camera ray's lookups saved). */
 #define HRM__SCAN 32
 #define HRM__SCAN_MAX 4096
-static void hrm__scan_medium(hrm__ctx *c)
+static HRM_DEVICE HRM__CALL void hrm__scan_medium(hrm__ctx *c)
 {
     hrm_real sa[HRM__CH], sx[HRM__CH];
     hrm_real a = 0, fa = hrm__sigma_sum(c, 0, 0, sa), tau[HRM__CH], least;
@@ -6436,7 +6483,7 @@ static void hrm__scan_medium(hrm__ctx *c)
 /* Run the method over the pieces; where a split found a jump, locate it,
    make it a breakpoint (reported in hrm_result.jumps) and solve again.
    The evaluations of every pass count. */
-static void hrm__dispatch(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM__NY])
+static HRM_DEVICE HRM__CALL void hrm__dispatch(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM__NY])
 {
     hrm_status w0 = c->warning;
     for (;;) {
@@ -6473,7 +6520,7 @@ static void hrm__dispatch(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM__NY]
 
 /* Tr(t0, t1) and the status: a closed form is exact in every method and
    form, the layer's tau is the one the nodes saw. */
-static hrm_status hrm__finish(hrm__ctx *c, const hrm_options *o, const hrm_real y[HRM__NY],
+static HRM_DEVICE HRM__CALL hrm_status hrm__finish(hrm__ctx *c, const hrm_options *o, const hrm_real y[HRM__NY],
                               hrm_real L[HRM__CH], hrm_real Tr[HRM__CH], hrm_real err[HRM__CH])
 {
     int adaptive = hrm__is_adaptive(o->method);
@@ -6577,13 +6624,13 @@ typedef struct hrm__panel {
 } hrm__panel;
 
 /* A panel's S2 (Simpson on its halves), channel ch. */
-static hrm_real hrm__panel_s2(const hrm__panel *p, int ch)
+static HRM_DEVICE hrm_real hrm__panel_s2(const hrm__panel *p, int ch)
 {
     return p->h / 12 * (p->f[0][ch] + 4 * p->f[1][ch] + 2 * p->f[2][ch] + 4 * p->f[3][ch] + p->f[4][ch]);
 }
 
 /* e and worst from a panel's samples, once they are all taken. */
-static void hrm__panel_set(hrm__panel *p)
+static HRM_DEVICE void hrm__panel_set(hrm__panel *p)
 {
     int i;
     p->worst = 0;
@@ -6597,7 +6644,7 @@ static void hrm__panel_set(hrm__panel *p)
 
 /* The estimate of panels p[0..np), the largest channel's max(|sum e|,
    2 sqrt(sum e^2)); with tau, their S2 + e / 15 added to it. */
-static hrm_real hrm__shadow_take(const hrm__panel *p, int np, hrm_real *tau)
+static HRM_DEVICE hrm_real hrm__shadow_take(const hrm__panel *p, int np, hrm_real *tau)
 {
     hrm_real est = 0;
     int i, k;
@@ -6618,7 +6665,7 @@ static hrm_real hrm__shadow_take(const hrm__panel *p, int np, hrm_real *tau)
     return est;
 }
 
-static HRM__NOINLINE void hrm__shadow_march(hrm__ctx *c, const hrm_options *o, hrm_real tau[HRM__CH])
+static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__shadow_march(hrm__ctx *c, const hrm_options *o, hrm_real tau[HRM__CH])
 {
     hrm__panel p[HRM_SHADOW_PANELS];
     hrm_real T = c->T, hmin, cap = -HRM_LOG(HRM__TINY), feature = c->m->feature;
@@ -6630,7 +6677,7 @@ static HRM__NOINLINE void hrm__shadow_march(hrm__ctx *c, const hrm_options *o, h
     c->stats.t_cut = c->t1;
     hrm__sigma_t_at(c, 0, 0, p[0].f[0]);
     while (a < T && c->status == HRM_OK) {
-        hrm_real b, allow, est;
+        hrm_real b, allow;
         int np = 4, k, j;
         hrm_status short_of = HRM_OK;
         /* with feature: panels no wider than it, at most half the
@@ -6652,7 +6699,7 @@ static HRM__NOINLINE void hrm__shadow_march(hrm__ctx *c, const hrm_options *o, h
         }
         c->stats.steps += np;
         allow = o->tr_tol * loose * (b - a) / T;
-        while (c->status == HRM_OK && !((est = hrm__shadow_take(p, np, NULL)) <= allow)) {
+        while (c->status == HRM_OK && !(hrm__shadow_take(p, np, NULL) <= allow)) {
             hrm_real worst = -1;
             int w = -1;
             for (k = 0; k < np; ++k)
@@ -6673,7 +6720,7 @@ static HRM__NOINLINE void hrm__shadow_march(hrm__ctx *c, const hrm_options *o, h
                 continue;
             }
             /* panel w into halves, 4 samples more */
-            memmove(&p[w + 1], &p[w], (size_t)(np - w) * sizeof p[0]);
+            for (i = np; i > w; --i) p[i] = p[i - 1];
             ++np;
             p[w].h /= 2;
             p[w + 1].a = p[w].a + p[w].h;
@@ -6736,7 +6783,7 @@ typedef struct hrm__job {
    drivers' storage where they run. Each is held only then, in the
    caller's workspace or in a frame of its own, so that a fixed-step solve
    on constants reserves none of it. */
-static unsigned hrm__needs(const hrm_medium *m, const hrm_options *o, int tr_only, int estimator,
+static HRM_DEVICE unsigned hrm__needs(const hrm_medium *m, const hrm_options *o, int tr_only, int estimator,
                            hrm_real t1)
 {
     int le, li;
@@ -6757,10 +6804,10 @@ static unsigned hrm__needs(const hrm_medium *m, const hrm_options *o, int tr_onl
     return need;
 }
 
-static hrm_status hrm__stage(hrm__job *j);
+static HRM_DEVICE hrm_status hrm__stage(hrm__job *j);
 
 /* Without a workspace, each need in a frame of its own. */
-static HRM__NOINLINE hrm_status hrm__with_layer(hrm__job *j)
+static HRM_DEVICE HRM__NOINLINE hrm_status hrm__with_layer(hrm__job *j)
 {
     hrm__tau layer;
     j->at[0] = &layer;
@@ -6768,7 +6815,7 @@ static HRM__NOINLINE hrm_status hrm__with_layer(hrm__job *j)
     return hrm__stage(j);
 }
 
-static HRM__NOINLINE hrm_status hrm__with_memo(hrm__job *j)
+static HRM_DEVICE HRM__NOINLINE hrm_status hrm__with_memo(hrm__job *j)
 {
     hrm__memo memo[HRM__MEMO + 1];
     j->at[1] = memo;
@@ -6776,7 +6823,7 @@ static HRM__NOINLINE hrm_status hrm__with_memo(hrm__job *j)
     return hrm__stage(j);
 }
 
-static HRM__NOINLINE hrm_status hrm__with_efit(hrm__job *j)
+static HRM_DEVICE HRM__NOINLINE hrm_status hrm__with_efit(hrm__job *j)
 {
     hrm__efit ef[2];
     j->at[2] = ef;
@@ -6784,7 +6831,7 @@ static HRM__NOINLINE hrm_status hrm__with_efit(hrm__job *j)
     return hrm__stage(j);
 }
 
-static HRM__NOINLINE hrm_status hrm__with_ns(hrm__job *j)
+static HRM_DEVICE HRM__NOINLINE hrm_status hrm__with_ns(hrm__job *j)
 {
     hrm__ns_store ns;
     j->at[3] = &ns;
@@ -6792,7 +6839,7 @@ static HRM__NOINLINE hrm_status hrm__with_ns(hrm__job *j)
     return hrm__stage(j);
 }
 
-static HRM__NOINLINE hrm_status hrm__with_gk(hrm__job *j)
+static HRM_DEVICE HRM__NOINLINE hrm_status hrm__with_gk(hrm__job *j)
 {
     hrm__gk_store gks;
     j->at[4] = &gks;
@@ -6801,7 +6848,7 @@ static HRM__NOINLINE hrm_status hrm__with_gk(hrm__job *j)
 }
 
 /* The solve itself, once its storage is held. */
-static HRM__NOINLINE hrm_status hrm__solve_job(hrm__job *j)
+static HRM_DEVICE HRM__CALL HRM__NOINLINE hrm_status hrm__solve_job(hrm__job *j)
 {
     hrm__ctx c;
     const hrm_medium *m = j->m;
@@ -6853,7 +6900,7 @@ static HRM__NOINLINE hrm_status hrm__solve_job(hrm__job *j)
    workspace (in hrm__need_bytes' order, within what hrm__ws_bytes
    asked for: the needs are a part of hrm__may_need), else each in a
    frame of its own. */
-static hrm_status hrm__stage(hrm__job *j)
+static HRM_DEVICE hrm_status hrm__stage(hrm__job *j)
 {
     int k;
     if (j->ws && j->need) {
@@ -6874,7 +6921,7 @@ static hrm_status hrm__stage(hrm__job *j)
 
 /* The one solve behind hrm_solve and hrm_transmittance (tr_only: no
    source, so only sigma_t is integrated). */
-static hrm_status hrm__run(const hrm_medium *m, hrm_real t0, hrm_real t1,
+static HRM_DEVICE HRM__CALL hrm_status hrm__run(const hrm_medium *m, hrm_real t0, hrm_real t1,
                            const hrm_options *in, int tr_only, hrm_real L[HRM__CH],
                            hrm_real Tr[HRM__CH], hrm_real err[HRM__CH], hrm_stats *stats,
                            int *njumps, hrm_real *jumps)
@@ -6920,7 +6967,7 @@ static hrm_status hrm__run(const hrm_medium *m, hrm_real t0, hrm_real t1,
    tr_end. A homogeneous medium in closed form; a transmittance callback
    by bisection (20 calls and one for the whole ray, returned). A value
    that is not a number leaves the ray whole (the solve reports it). */
-static long hrm__cut_point(const hrm_medium *m, hrm_real t0, hrm_real t1, hrm_real cutoff,
+static HRM_DEVICE HRM__CALL long hrm__cut_point(const hrm_medium *m, hrm_real t0, hrm_real t1, hrm_real cutoff,
                            hrm_real *t_cut, hrm_real tr_end[HRM__CH])
 {
     hrm_real tr[HRM__CH], lo = t0, hi = t1, mx, smin = HRM__R(HUGE_VAL);
@@ -6955,7 +7002,7 @@ static long hrm__cut_point(const hrm_medium *m, hrm_real t0, hrm_real t1, hrm_re
     return calls;
 }
 
-HRM__DEF size_t hrm_workspace_size(const hrm_options *options)
+HRM__DEF HRM_DEVICE size_t hrm_workspace_size(const hrm_options *options)
 {
     hrm_options o;
     hrm_options probe;
@@ -6974,7 +7021,7 @@ HRM__DEF size_t hrm_workspace_size(const hrm_options *options)
    (a list of breakpoints loses those beyond the cut) and its status into
    *st: 1; else 0, and the caller solves the whole ray. A frame of its own:
    the copies it makes cost a solve without a cut-off nothing. */
-static HRM__NOINLINE int hrm__solve_cut(const hrm_medium *medium, hrm_real t0, hrm_real t1,
+static HRM_DEVICE HRM__CALL HRM__NOINLINE int hrm__solve_cut(const hrm_medium *medium, hrm_real t0, hrm_real t1,
                                         const hrm_options *options, hrm_result *r, hrm_status *st)
 {
     hrm_options o;
@@ -7005,7 +7052,7 @@ static HRM__NOINLINE int hrm__solve_cut(const hrm_medium *medium, hrm_real t0, h
     return 1;
 }
 
-HRM__DEF hrm_status hrm_solve(const hrm_medium *medium, hrm_real t0, hrm_real t1,
+HRM__DEF HRM_DEVICE hrm_status hrm_solve(const hrm_medium *medium, hrm_real t0, hrm_real t1,
                               const hrm_options *options, hrm_result *result)
 {
     hrm_result r;
@@ -7026,7 +7073,7 @@ HRM__DEF hrm_status hrm_solve(const hrm_medium *medium, hrm_real t0, hrm_real t1
     return st;
 }
 
-HRM__DEF hrm_status hrm_transmittance(const hrm_medium *medium, hrm_real t0,
+HRM__DEF HRM_DEVICE hrm_status hrm_transmittance(const hrm_medium *medium, hrm_real t0,
                                       hrm_real t1, const hrm_options *options,
                                       hrm_real Tr[HRM_CHANNELS], hrm_stats *stats)
 {

@@ -253,6 +253,25 @@ else
     echo "examples: build FAILED"; cat "$B/examples.log"; fail=$((fail + 1))
 fi
 
+# The CUDA example (examples/gpu.cu) compiled by nvcc where the Makefile
+# finds it ($CUDA_HOME/bin, else PATH), for sm_90 and sm_75, warnings as
+# errors: every function of hrm.h on the device, its tables on both sides.
+# make gpu runs it where a GPU is.
+gstart=$(date +%s)
+rm -f build/example_gpu
+if make --no-print-directory -s gpu-build > "$B/gpu.log" 2>&1; then
+    if grep -q "^gpu: skipped" "$B/gpu.log"; then
+        cat "$B/gpu.log"
+    elif [ -x build/example_gpu ]; then
+        configs=$((configs + 1)); pass=$((pass + 1))
+        echo "gpu: examples/gpu.cu compiled by nvcc (sm_90, sm_75) in $(( $(date +%s) - gstart )) s"
+    else
+        configs=$((configs + 1)); fail=$((fail + 1)); echo "gpu: no binary"; cat "$B/gpu.log"
+    fi
+else
+    configs=$((configs + 1)); fail=$((fail + 1)); echo "gpu: nvcc build FAILED"; cat "$B/gpu.log"
+fi
+
 echo "$configs configurations"
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
