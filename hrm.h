@@ -2972,8 +2972,8 @@ static HRM_DEVICE hrm_real hrm__mix_u_of_t(void *user, hrm_real t)
 
 static HRM_DEVICE HRM__CALL double hrm__mix_invert(hrm_ray_plan *p, double want)
 {
-    double lo = p->t0, hi = p->t1, t, step, last;
-    int it;
+    double lo = p->t0, hi = p->t1, flo = -want, fhi, t, step, last;
+    int it, side = 0;
     if (want == p->last_u) return p->last_t;
     if (!(want > 0)) {
         t = p->t0;
@@ -2987,34 +2987,54 @@ static HRM_DEVICE HRM__CALL double hrm__mix_invert(hrm_ray_plan *p, double want)
             for (it = 0; it < p->nmix; ++it)
                 if (p->delta[it] + p->D[it] > hi) hi = p->delta[it] + p->D[it];
             for (it = 0; it < 2100 && hrm__mix_u(p, hi) < want; ++it) hi = p->t0 + 2 * (hi - p->t0) + 1;
+            fhi = hrm__mix_u(p, hi) - want;
+        } else {
+            fhi = p->u1 - want;
         }
         /* the solve's nodes come mostly in order: the last inversion
            bounds this one and its tangent gives the first guess */
-        t = (lo + hi) / 2;
+        t = lo - flo * (hi - lo) / (fhi - flo);
         if (p->last_u > 0 && p->last_u < p->u1) {
             double g = hrm__mix_du(p, p->last_t), nt = g > 0 ? p->last_t + (want - p->last_u) / g : t;
-            if (want > p->last_u)
+            if (want > p->last_u) {
                 lo = p->last_t;
-            else
+                flo = p->last_u - want;
+            } else {
                 hi = p->last_t;
-            t = nt > lo && nt < hi ? nt : (lo + hi) / 2;
+                fhi = p->last_u - want;
+            }
+            t = nt > lo && nt < hi ? nt : lo - flo * (hi - lo) / (fhi - flo);
         }
+        if (!(t > lo && t < hi)) t = (lo + hi) / 2;
         step = last = hi - lo;
         for (it = 0; it < 200; ++it) {
             double f = hrm__mix_u(p, t) - want, g = hrm__mix_du(p, t), nt;
-            if (f < 0)
+            if (f == 0) break;
+            if (f < 0) {
                 lo = t;
-            else
+                flo = f;
+                if (side == -1) fhi /= 2; /* the same end twice: Illinois */
+                side = -1;
+            } else {
                 hi = t;
+                fhi = f;
+                if (side == 1) flo /= 2;
+                side = 1;
+            }
             /* Newton inside the bracket that at least halves the step
-               before last, else bisection: Newton alone can swing across
-               the flat stretch between two lights without converging */
+               before last, else the bracket's secant (regula falsi,
+               Illinois): Newton alone can swing across the flat stretch
+               between two lights without converging */
+            if (g > 0 && fabs(f) <= 8 * DBL_EPSILON * fabs(t) * g) break; /* Newton's step below rounding */
             nt = g > 0 ? t - f / g : lo;
-            if (!(nt > lo && nt < hi) || 2 * fabs(nt - t) > last) nt = (lo + hi) / 2;
+            if (!(nt > lo && nt < hi) || 2 * fabs(nt - t) > last) {
+                nt = lo - flo * (hi - lo) / (fhi - flo);
+                if (!(nt > lo && nt < hi)) nt = (lo + hi) / 2;
+            }
             last = step;
             step = fabs(nt - t);
-            if (nt == t || hi - lo <= 4 * DBL_EPSILON * fabs(t)) break;
             t = nt;
+            if (hi - lo <= 4 * DBL_EPSILON * fabs(t)) break;
         }
     }
     p->last_u = want;
