@@ -3743,6 +3743,10 @@ static void hrm__efit_panel(const hrm__ctx *c, const hrm__efit *F, const hrm__pt
                 }
             }
             whole = last == n - 1 && j > last && bf > b && bf < HRM__R(HUGE_VAL);
+            /* the fitted exponential at y = -1 (the scale below) within
+               1 / TINY: with a slope of 1e17 it was exp(5e14), infinite,
+               while every sample had underflowed (0 times inf: NaN) */
+            if (whole && !(lf[0] + bf * (F->y[0] + 1) < -HRM_LOG(HRM__TINY))) whole = 0;
             if (whole) b = bf;
         }
         /* tau at y = -1 on the line not below 0 (exp(-tref) <= 1): the
