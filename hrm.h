@@ -2736,6 +2736,12 @@ static hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_warp *w)
             c->w_sin_b = 1;
             c->w_ub = HRM__R(1.5707963267948966);
             c->pb = c->w_ub * (1 - HRM__EPS);
+            /* a light behind t0 within an ulp of the line's angle (D 1e-12,
+               1 behind: pa rounds to pi/2): no range in u to sample (it
+               was reversed, L -16 391 with HRM_OK); hrm__setup takes the
+               distance warp instead, with a warning */
+            if (!(c->pb - c->pa > HRM_SQRT(HRM__EPS) * (HRM_FABS(c->pa) + HRM_FABS(c->pb))))
+                c->warp = HRM_WARP_NONE;
         } else {
             rb = HRM_HYPOT(db, D);
             c->w_cos_b = D / rb;
@@ -5957,10 +5963,25 @@ static hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, hrm__memo *memo, hrm_
         st = hrm__setup_warp(c, &none);
     } else {
         st = hrm__setup_warp(c, &o->warp);
+        if (st == HRM_ERR_BAD_INTERVAL && o->warp.kind == HRM_WARP_EQUIANGULAR && o->warp.D > 0) {
+            hrm_warp dw; /* the equiangular range unresolved (above) */
+            memset(&dw, 0, sizeof dw);
+            dw.kind = HRM_WARP_DISTANCE;
+            st = hrm__setup_warp(c, &dw);
+            hrm__warn(c, HRM_WARN_ROUNDOFF);
+        }
     }
     if (st == HRM_OK) st = c->status;
     if (st != HRM_OK) return st;
     c->off_end = c->s_end - c->t0;
+    if (!(c->off_end > 0) && !HRM__FINITE(c->T)) {
+        /* a warp's whole reach below one ulp of t0 (sigma 1e5 at t0 1e13):
+           the offsets still resolve it where t does not; the callbacks
+           see t0 alone (an empty layer had made L NaN with HRM_OK) */
+        hrm_real J;
+        hrm__map(c, c->pb, &c->off_end, &J);
+        hrm__warn(c, HRM_WARN_ROUNDOFF);
+    }
     if (layer) hrm__tau_init(layer, c->off_end, o->tau_tol);
     /* the breakpoints strictly inside what is integrated, as offsets */
     for (i = 0; i < o->nbreaks; ++i) {
@@ -6733,8 +6754,12 @@ static unsigned hrm__needs(const hrm_medium *m, const hrm_options *o, int tr_onl
     unsigned need = 0;
     hrm__sources(m, tr_only, &le, &li);
     src = hrm__tau_source(m, o, le || li);
+    /* (the equiangular warp on an infinite ray may fall back to the
+       distance warp: hrm__setup) */
     if (!estimator && (src == HRM__TAU_LAYER ||
-                       (sigma_cb && o->warp.kind == HRM_WARP_DISTANCE && !(tr_only && HRM__FINITE(t1)))))
+                       (sigma_cb && !(tr_only && HRM__FINITE(t1)) &&
+                        (o->warp.kind == HRM_WARP_DISTANCE ||
+                         (o->warp.kind == HRM_WARP_EQUIANGULAR && !HRM__FINITE(t1))))))
         need |= HRM__NEED_LAYER;
     if (hrm__is_adaptive(o->method)) need |= HRM__NEED_MEMO;
     if (o->exponential && hrm__tau_closed(src)) need |= HRM__NEED_EFIT;

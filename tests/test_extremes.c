@@ -691,7 +691,128 @@ static void xg_grid(void)
         CHECK_INT(t.bad[p], 0, "%s (%s): violations", xg_promise[p], real_is_float() ? "float" : "double");
 }
 
+/* ------------------------------------------------------------------------
+   Regressions: cases past the grid's sample, each of a class of extremes
+   that gave a silent wrong answer (issue 26). A homogeneous medium (sigma_a
+   0.4 sigma, sigma_s 0.6 sigma, grey) as constants or callbacks, Li = 1:
+   L = 0.6 (1 - Tr) exactly.
+   ------------------------------------------------------------------------ */
+typedef struct rg_scene {
+    double sig, t0, t1;
+    long calls, outside; /* callbacks, and those at t not finite or off [t0, t1] */
+} rg_scene;
+
+static void rg_at(rg_scene *s, hrm_real t)
+{
+    s->calls++;
+    if (!finite_d((double)t) || (double)t < s->t0 || (double)t > s->t1) s->outside++;
+}
+static void rg_sa(void *user, hrm_real t, hrm_real out[NCH])
+{
+    rg_scene *s = (rg_scene *)user;
+    int c;
+    rg_at(s, t);
+    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)(0.4 * s->sig);
+}
+static void rg_ss(void *user, hrm_real t, hrm_real out[NCH])
+{
+    rg_scene *s = (rg_scene *)user;
+    int c;
+    rg_at(s, t);
+    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)(0.6 * s->sig);
+}
+static void rg_li(void *user, hrm_real t, hrm_real out[NCH])
+{
+    int c;
+    rg_at((rg_scene *)user, t);
+    for (c = 0; c < NCH; ++c) out[c] = 1;
+}
+
+static hrm_status rg_solve(rg_scene *s, int callbacks, hrm_options *o, hrm_result *r)
+{
+    hrm_medium m;
+    int c;
+    memset(&m, 0, sizeof m);
+    m.user = s;
+    m.Li = rg_li;
+    if (callbacks) {
+        m.sigma_a = rg_sa;
+        m.sigma_s = rg_ss;
+    } else {
+        m.flags = HRM_MEDIUM_HOMOGENEOUS;
+        for (c = 0; c < NCH; ++c) {
+            m.const_sigma_a[c] = (hrm_real)(0.4 * s->sig);
+            m.const_sigma_s[c] = (hrm_real)(0.6 * s->sig);
+        }
+    }
+    s->calls = s->outside = 0;
+    return hrm_solve(&m, (hrm_real)s->t0, (hrm_real)s->t1, o, r);
+}
+
+/* What every solve of an unresolvable ray must give: a warning (t cannot
+   resolve what is asked), L and Tr finite and physical, every callback at
+   a finite t of the ray, and L near 0.6: within 1% for the adaptive
+   methods (their tolerance 1e-3 on what t resolves), within 10% for the
+   fixed-step ones (N = 32 in the warp's variable; Euler measured 3.3%). */
+static void rg_check_unresolved(const char *what, const rg_scene *s, int cb, hrm_method mth, hrm_status st,
+                                const hrm_result *r)
+{
+    double L = (double)r->L[0], Tr = (double)r->Tr[0];
+    int fixed = !is_adaptive(mth);
+    CHECK(st > 0, "%s, %s, %s: a warning (status %d)", what, hrm_method_name(mth), cb ? "callbacks" : "constants",
+          (int)st);
+    CHECK(finite_d(L) && L >= 0 && Tr >= 0 && Tr <= 1, "%s, %s, %s: L %g, Tr %g physical", what,
+          hrm_method_name(mth), cb ? "callbacks" : "constants", L, Tr);
+    CHECK_NEAR(L, 0.6, fixed ? 0.06 : 0.006, "%s, %s, %s: L", what, hrm_method_name(mth),
+               cb ? "callbacks" : "constants");
+    CHECK_INT(s->outside, 0, "%s, %s: callbacks at t outside the ray", what, hrm_method_name(mth));
+}
+
+/* The distance warp on an infinite ray so far from the origin that its
+   whole reach (ln(2/eps) / sigma) is below one ulp of t0: the layer had
+   an empty ray and L came out NaN (nested Simpson: HRM_WARN_H_MIN, L =
+   NaN). Every method; the callbacks then see t0 alone. */
+static void rg_far_distance(void)
+{
+    int cb, mi;
+    for (cb = 0; cb < 2; ++cb)
+        for (mi = 0; mi < N_METHODS_ALL; ++mi) {
+            rg_scene s = {1e5, real_is_float() ? 1e5 : 1e13, (double)INFINITY, 0, 0};
+            hrm_options o = hrm_default_options(every_method[mi]);
+            hrm_result r;
+            hrm_status st;
+            o.warp.kind = HRM_WARP_DISTANCE;
+            st = rg_solve(&s, cb, &o, &r);
+            rg_check_unresolved("distance warp past t's resolution", &s, cb, every_method[mi], st, &r);
+        }
+}
+
+/* The equiangular warp on an infinite ray, the light 1 behind t0 and
+   1e-12 (float; double 1e-17) off the line: atan2(1, D) rounds to pi/2,
+   above the end of the range in u, which was reversed (the rectangle rule:
+   L = -16 391 with HRM_OK in float). The distance warp is taken instead,
+   with HRM_WARN_ROUNDOFF. */
+static void rg_behind_equiangular(void)
+{
+    int cb, mi;
+    for (cb = 0; cb < 2; ++cb)
+        for (mi = 0; mi < N_METHODS_ALL; ++mi) {
+            rg_scene s = {1, 0, (double)INFINITY, 0, 0};
+            hrm_options o = hrm_default_options(every_method[mi]);
+            hrm_result r;
+            hrm_status st;
+            o.warp.kind = HRM_WARP_EQUIANGULAR;
+            o.warp.delta = -1;
+            o.warp.D = (hrm_real)(real_is_float() ? 1e-12 : 1e-17);
+            o.steps = 16;
+            st = rg_solve(&s, cb, &o, &r);
+            rg_check_unresolved("equiangular warp behind t0", &s, cb, every_method[mi], st, &r);
+        }
+}
+
 void extremes_tests(void)
 {
     RUN_GROUP(xg_grid);
+    RUN_GROUP(rg_far_distance);
+    RUN_GROUP(rg_behind_equiangular);
 }
