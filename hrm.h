@@ -6514,34 +6514,59 @@ static hrm_status hrm__finish(hrm__ctx *c, const hrm_options *o, const hrm_real 
         }
     }
     for (i = 0; i < HRM__CH; ++i) err[i] = adaptive ? c->err_acc[i] : -1;
-    if (adaptive && !c->rte && !c->per_length) {
-        /* physically bounded whatever a budget cut short: 0 <= L <= the
-           largest S / sigma_t sampled (the larger of Le and Li where sigma_t
-           is not known at a sample, S / sigma_t being their weighted mean)
-           times 1 - Tr; what is cut off counts in the estimate */
-        for (i = 0; i < HRM__CH; ++i) {
-            hrm_real top = c->src_max[i] * absorbed[i] * (1 + 16 * HRM__EPS);
-            if (L[i] > top) {
-                err[i] += L[i] - top;
-                L[i] = top;
-            }
-            if (L[i] < 0) {
-                err[i] -= L[i];
-                L[i] = 0;
-            }
-            /* a cut beyond the tolerance: the rule missed, and HRM_OK
-               must not hide it (t's resolution on a ray far from the
-               origin under a user warp gave L 625 times too large, the
-               cut its only trace) */
-            if (err[i] > c->atol + 3 * c->rtol * HRM_FABS(L[i]) + 16 * HRM__EPS * HRM_FABS(L[i]))
-                hrm__warn(c, HRM_FABS(c->t0) > c->T ? HRM_WARN_ROUNDOFF : HRM_WARN_TOLERANCE);
-        }
-    }
-    if (adaptive && c->unresolved) hrm__warn(c, HRM_WARN_ROUNDOFF);
     for (i = 0; i < HRM__CH; ++i)
         /* fixed steps across the transmittance callback's underflow that
            count beyond round-off: upper bounds, not estimates */
         if (c->unsure[i] > 16 * HRM__EPS * HRM_FABS(L[i])) hrm__warn(c, HRM_WARN_ROUNDOFF);
+    if (!c->per_length) {
+        /* physically bounded whatever a budget cut short, a fixed step
+           overshot or an explicit step past its stability limit gave
+           (Simpson N = 32 on a ray 1e30 long: L = 1.4e27; Fehlberg in the
+           RTE form: Tr 1506): 0 <= Tr <= 1 and 0 <= L <= the largest S /
+           sigma_t sampled (the larger of Le and Li where sigma_t is not
+           known at a sample, S / sigma_t being their weighted mean) times
+           1 - Tr; what is cut off counts in the estimate. Fixed steps in
+           the RTE form keep the papers' blow-up (a warning only); fixed
+           steps without a fit keep up to twice the bound (a rule's error
+           where the sampled S / sigma_t and its own Tr are coarse: Euler
+           in a slab, clamped to the bound, reached 1e-2 at no N). */
+        for (i = 0; i < HRM__CH; ++i) {
+            hrm_real top, cut = 0, l = L[i], tr = Tr[i], slack;
+            int bad = 0;
+            if (c->rte && !(tr >= 0 && tr <= 1)) {
+                bad = !(tr >= -16 * HRM__EPS && tr <= 1 + 16 * HRM__EPS);
+                tr = tr > 1 ? 1 : 0;
+                absorbed[i] = 1 - tr;
+            }
+            top = c->src_max[i] * absorbed[i] * (1 + 16 * HRM__EPS);
+            slack = 16 * HRM__EPS * top;
+            if (!adaptive && !c->expo && l > top && l <= 2 * top) {
+                top = l;
+                slack = top;
+            }
+            if (l > top) {
+                cut = l - top;
+                l = top;
+            }
+            if (l < 0) {
+                cut = -l;
+                l = 0;
+            }
+            if (adaptive || !c->rte) {
+                L[i] = l;
+                Tr[i] = tr;
+            }
+            if (adaptive) err[i] += cut;
+            /* a cut beyond the tolerance: the rule missed, and HRM_OK
+               must not hide it (t's resolution on a ray far from the
+               origin under a user warp gave L 625 times too large, the
+               cut its only trace); fixed steps: beyond round-off */
+            if (bad || (adaptive ? err[i] > c->atol + 3 * c->rtol * HRM_FABS(l) + 16 * HRM__EPS * HRM_FABS(l)
+                                 : cut > slack))
+                hrm__warn(c, HRM_FABS(c->t0) > c->T ? HRM_WARN_ROUNDOFF : HRM_WARN_TOLERANCE);
+        }
+    }
+    if (adaptive && c->unresolved) hrm__warn(c, HRM_WARN_ROUNDOFF);
     if (c->status != HRM_OK) {
         hrm__fill(L, HRM__CH, 0);
         hrm__fill(Tr, HRM__CH, 1);

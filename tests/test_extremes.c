@@ -810,9 +810,112 @@ static void rg_behind_equiangular(void)
         }
 }
 
+/* Every result within the bound its samples give (hrm__finish): Simpson
+   N = 32 on a ray 1e30 long returned L = 1.4e27 with HRM_OK (Euler
+   8.6e27), the physical bound sup(S / sigma_t) (1 - Tr) being 0.6. A
+   fixed-step L up to twice the bound is the rule's (its error where the
+   samples are coarse); past it the bound, HRM_WARN_TOLERANCE. Every
+   fixed-step method, constants and callbacks. */
+static void rg_fixed_bound(void)
+{
+    int cb, mi;
+    for (cb = 0; cb < 2; ++cb)
+        for (mi = 0; mi < N_METHODS_ALL; ++mi) {
+            rg_scene s = {1, 0, 1e30, 0, 0};
+            hrm_options o;
+            hrm_result r;
+            hrm_status st;
+            double L;
+            if (is_adaptive(every_method[mi])) continue;
+            o = hrm_default_options(every_method[mi]);
+            o.steps = 32;
+            st = rg_solve(&s, cb, &o, &r);
+            L = (double)r.L[0];
+            /* the bound to round-off (1 - Tr = 1 here) */
+            CHECK(st == HRM_OK ? L <= 1.2 * (1 + 1e3 * real_eps())
+                               : st == HRM_WARN_TOLERANCE && L <= 0.6 * (1 + 1e3 * real_eps()),
+                  "%s, %s, ray 1e30 long: status %d, L %g (bound 0.6; OK to twice it)", hrm_method_name(every_method[mi]),
+                  cb ? "callbacks" : "constants", (int)st, L);
+            CHECK(L >= 0 && (double)r.Tr[0] >= 0 && (double)r.Tr[0] <= 1, "%s: L %g, Tr %g physical",
+                  hrm_method_name(every_method[mi]), L, (double)r.Tr[0]);
+        }
+}
+
+/* The RTE form past its stability limit: the pairs' explicit steps in a
+   medium of sigma 1e11 over [0, 1e-7] (tau 1e4), Li shadowed over [0.3,
+   0.55) of the ray, returned L = -251 318 and Tr = 418 864 (Fehlberg; the
+   other pairs alike) with HRM_OK. Now: 0 <= Tr <= 1 and L within its
+   bound, and HRM_OK only within 10 rtol of the exact L = 0.6 (1 - Tr) (the
+   shadow ends 0.45 of the ray, tau 4500, from t0: invisible). A fixed
+   step in the RTE form keeps the papers' blow-up (test_fixed.c's
+   test_rte_stiffness), with a warning: RK4 at h sigma_t = 3, N = 20. */
+typedef struct rg_shadow {
+    rg_scene s;
+    double lo, hi;
+} rg_shadow;
+static void rg_li_shadow(void *user, hrm_real t, hrm_real out[NCH])
+{
+    rg_shadow *sh = (rg_shadow *)user;
+    int c;
+    rg_at(&sh->s, t);
+    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)((double)t >= sh->lo && (double)t < sh->hi ? 0 : 1);
+}
+static void rg_rte_physical(void)
+{
+    static const hrm_method pairs[5] = {HRM_BOGACKI_SHAMPINE, HRM_DORMAND_PRINCE, HRM_FEHLBERG, HRM_CASH_KARP,
+                                        HRM_VERNER};
+    int cb, mi, c;
+    for (cb = 0; cb < 2; ++cb)
+        for (mi = 0; mi < 5; ++mi) {
+            rg_shadow sh = {{1e11, 0, 1e-7, 0, 0}, 0.3e-7, 0.55e-7};
+            hrm_medium m;
+            hrm_options o = hrm_default_options(pairs[mi]);
+            hrm_result r;
+            hrm_status st;
+            memset(&m, 0, sizeof m);
+            m.user = &sh;
+            m.Li = rg_li_shadow;
+            if (cb) {
+                m.sigma_a = rg_sa;
+                m.sigma_s = rg_ss;
+            } else {
+                m.flags = HRM_MEDIUM_HOMOGENEOUS;
+                for (c = 0; c < NCH; ++c) {
+                    m.const_sigma_a[c] = (hrm_real)0.4e11;
+                    m.const_sigma_s[c] = (hrm_real)0.6e11;
+                }
+            }
+            o.form = HRM_FORM_RTE;
+            st = hrm_solve(&m, 0, (hrm_real)1e-7, &o, &r);
+            if (st < 0) continue; /* HRM_ERR_RANGE: the blow-up caught (ERRORS) */
+            for (c = 0; c < NCH; ++c) {
+                double L = (double)r.L[c], Tr = (double)r.Tr[c];
+                CHECK(Tr >= 0 && Tr <= 1 && L >= 0 && L <= 0.6 * (1 + 1e3 * real_eps()) * (1 - Tr),
+                      "%s rte, %s, tau 1e4: channel %d: L %g, Tr %g physical", hrm_method_name(pairs[mi]),
+                      cb ? "callbacks" : "constants", c, L, Tr);
+                if (st == HRM_OK)
+                    CHECK_NEAR(L, 0.6 * (1 - Tr), 10 * (double)o.rtol * 0.6, "%s rte, %s, tau 1e4: HRM_OK, L",
+                               hrm_method_name(pairs[mi]), cb ? "callbacks" : "constants");
+            }
+        }
+    {
+        rg_scene s = {1, 0, 60, 0, 0}; /* h sigma_t = 3 at N = 20: |R| = 1.375 */
+        hrm_options o = hrm_default_options(HRM_RK4);
+        hrm_result r;
+        hrm_status st;
+        o.form = HRM_FORM_RTE;
+        o.steps = 20;
+        st = rg_solve(&s, 0, &o, &r);
+        CHECK_INT(st, HRM_WARN_TOLERANCE, "rk4 rte h sigma_t = 3, N = 20: L %g, Tr %g: a warning", (double)r.L[0],
+                  (double)r.Tr[0]);
+    }
+}
+
 void extremes_tests(void)
 {
     RUN_GROUP(xg_grid);
     RUN_GROUP(rg_far_distance);
     RUN_GROUP(rg_behind_equiangular);
+    RUN_GROUP(rg_fixed_bound);
+    RUN_GROUP(rg_rte_physical);
 }
