@@ -4512,6 +4512,28 @@ static void hrm__pair_calibrate(const hrm__ctx *c, const hrm__tableau *tb, hrm_r
     }
 }
 
+/* The RTE form's step limit: the largest z such that the tableau's
+   stability function R(-z') = 1 - z' b^T (I + z' A)^-1 1 stays in [0, 1]
+   for every z' in [0, z] (Tr and L then decay monotonically over a step
+   in a homogeneous medium, as the exact solution does: no negative Tr, no
+   blow-up), by a scan in steps of 1/64. */
+static hrm_real hrm__stab_limit(const hrm__tableau *tb)
+{
+    hrm_real z;
+    for (z = HRM__R(1.0 / 64); z < 8; z += HRM__R(1.0 / 64)) {
+        hrm_real g[HRM__MAX_STAGES], R = 1;
+        int i, j;
+        for (i = 0; i < tb->s; ++i) {
+            hrm_real acc = 0;
+            for (j = 0; j < i; ++j) acc += tb->a[i * tb->s + j] * g[j];
+            g[i] = 1 - z * acc;
+            R -= z * tb->b[i] * g[i];
+        }
+        if (!(R >= 0 && R <= 1)) break;
+    }
+    return z - HRM__R(1.0 / 64);
+}
+
 /* Adaptive Runge-Kutta driver. The last step lands exactly on the end; a
    budget about to run out finishes the ray in even unchecked steps
    (HRM_WARN_MAX_EVALS); a step refused at h_min is taken anyway
@@ -4526,6 +4548,8 @@ static void hrm__ivp_adaptive(hrm__ctx *c, const hrm__tableau *tb, hrm_control c
     hrm__pt start, end;
     int cost = hrm__stage_cost(tb), have = 0, after_reject = 0, first = 1, n;
     hrm__nodes_info ni;
+    /* the RTE form: h sigma_t at most zmax (hrm__stab_limit) */
+    hrm_real zmax = c->rte ? hrm__stab_limit(tb) : 0, hz = HRM__R(HUGE_VAL);
 
     hrm__nodes_init(tb, &ni);
     hrm__ivp_init(c, y);
@@ -4577,6 +4601,20 @@ static void hrm__ivp_adaptive(hrm__ctx *c, const hrm__tableau *tb, hrm_control c
         }
         if (control == HRM_CONTROL_PI) hrm__pair_calibrate(c, tb, hs, y, ynew, both);
         ratio = hrm__ratio(c, (int)control, p, q, y, ynew, control == HRM_CONTROL_PI ? both : err);
+        if (c->rte) {
+            /* a step past the stability limit (h sigma_t, in p, beyond
+               zmax at its ends) is refused whatever its estimate says
+               (Fehlberg at sigma_t 1e11: L = -584, Tr = 974 from steps
+               that passed), and none is tried past it; at h_min, or
+               forced, hrm__finish judges the result */
+            hrm_real g = 0;
+            for (n = 0; n < HRM__CH; ++n) {
+                if (start.gs[n] > g) g = start.gs[n];
+                if (have && end.gs[n] > g) g = end.gs[n];
+            }
+            hz = g > 0 ? zmax / g : HRM__R(HUGE_VAL);
+            if (hs > hz && hs > c->h_min && ratio <= 2) ratio = 2;
+        }
         accept = ratio <= 1 || forced;
         if (!accept && control == HRM_CONTROL_PI && c->rough_left > 0 &&
             hrm__rough(ratio, r_parent) && hrm__ratio(c, HRM__JUMP, p, q, y, ynew, both) <= 1) {
@@ -4627,6 +4665,7 @@ static void hrm__ivp_adaptive(hrm__ctx *c, const hrm__tableau *tb, hrm_control c
            NaN) */
         if (!(fac >= 0)) fac = HRM__R(0.2);
         h = hrm__clamp(hs * fac, c->h_min, c->h_max);
+        if (h > hz) h = hz > c->h_min ? hz : c->h_min;
     }
 }
 
@@ -6513,7 +6552,15 @@ static hrm_status hrm__finish(hrm__ctx *c, const hrm_options *o, const hrm_real 
             Tr[i] = HRM_EXP(-y[i]);
         }
     }
-    for (i = 0; i < HRM__CH; ++i) err[i] = adaptive ? c->err_acc[i] : -1;
+    for (i = 0; i < HRM__CH; ++i) {
+        err[i] = adaptive ? c->err_acc[i] : -1;
+        /* an estimate past the range (a forced step in the RTE form far
+           past its stability limit: NaN): none, the range instead */
+        if (adaptive && !(err[i] <= c->range)) {
+            err[i] = c->range;
+            hrm__warn(c, HRM_WARN_TOLERANCE);
+        }
+    }
     for (i = 0; i < HRM__CH; ++i)
         /* fixed steps across the transmittance callback's underflow that
            count beyond round-off: upper bounds, not estimates */

@@ -844,9 +844,9 @@ static void rg_fixed_bound(void)
 /* The RTE form past its stability limit: the pairs' explicit steps in a
    medium of sigma 1e11 over [0, 1e-7] (tau 1e4), Li shadowed over [0.3,
    0.55) of the ray, returned L = -251 318 and Tr = 418 864 (Fehlberg; the
-   other pairs alike) with HRM_OK. Now: 0 <= Tr <= 1 and L within its
-   bound, and HRM_OK only within 10 rtol of the exact L = 0.6 (1 - Tr) (the
-   shadow ends 0.45 of the ray, tau 4500, from t0: invisible). A fixed
+   other pairs alike) with HRM_OK. Now: 0 <= Tr <= 1, L within its bound
+   and within 10 rtol of the exact L = 0.6 (the shadow is 3000 mean free
+   paths from t0: invisible), the steps within the stability limit. A fixed
    step in the RTE form keeps the papers' blow-up (test_fixed.c's
    test_rte_stiffness), with a warning: RK4 at h sigma_t = 3, N = 20. */
 typedef struct rg_shadow {
@@ -893,9 +893,10 @@ static void rg_rte_physical(void)
                 CHECK(Tr >= 0 && Tr <= 1 && L >= 0 && L <= 0.6 * (1 + 1e3 * real_eps()) * (1 - Tr),
                       "%s rte, %s, tau 1e4: channel %d: L %g, Tr %g physical", hrm_method_name(pairs[mi]),
                       cb ? "callbacks" : "constants", c, L, Tr);
-                if (st == HRM_OK)
-                    CHECK_NEAR(L, 0.6 * (1 - Tr), 10 * (double)o.rtol * 0.6, "%s rte, %s, tau 1e4: HRM_OK, L",
-                               hrm_method_name(pairs[mi]), cb ? "callbacks" : "constants");
+                /* steps within the stability limit (hrm__stab_limit):
+                   right whatever the status */
+                CHECK_NEAR(L, 0.6, 10 * (double)o.rtol * 0.6, "%s rte, %s, tau 1e4: L (status %d)",
+                           hrm_method_name(pairs[mi]), cb ? "callbacks" : "constants", (int)st);
             }
         }
     {
