@@ -2700,6 +2700,10 @@ static hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_warp *w)
             c->warp = HRM_WARP_NONE;
             break;
         }
+        /* an infinite ray's reach ln(2/eps) / s within the range (s just
+           above the smallest normal number: the offsets overflowed, and
+           callbacks saw t = +inf) */
+        if (inf && !(reach / s <= hrm__range(1))) s = reach / hrm__range(1);
         c->w_sigma = s;
         c->pb = inf ? 1 : -HRM_EXPM1(-s * T);
         if (c->pb > 1 - HRM__EPS / 2) c->pb = 1 - HRM__EPS / 2;

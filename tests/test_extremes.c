@@ -912,6 +912,31 @@ static void rg_rte_physical(void)
     }
 }
 
+/* The distance warp on an infinite ray with sigma_ref just above the
+   smallest normal number: its reach ln(2/eps) / sigma_ref overflowed, and
+   16 to 22 callbacks saw t = +inf before HRM_ERR_RANGE. Now no callback
+   sees a t that is not finite; the status may be HRM_ERR_RANGE (dt/du
+   past the range), else L and Tr physical. */
+static void rg_tiny_sigma_ref(void)
+{
+    int cb, mi;
+    for (cb = 0; cb < 2; ++cb)
+        for (mi = 0; mi < N_METHODS_ALL; ++mi) {
+            rg_scene s = {1, 0, (double)INFINITY, 0, 0};
+            hrm_options o = hrm_default_options(every_method[mi]);
+            hrm_result r;
+            hrm_status st;
+            o.warp.kind = HRM_WARP_DISTANCE;
+            o.warp.sigma_ref = (hrm_real)(real_is_float() ? 1.2e-38 : 2.3e-308);
+            st = rg_solve(&s, cb, &o, &r);
+            CHECK_INT(s.outside, 0, "%s, %s: callbacks at t not finite", hrm_method_name(every_method[mi]),
+                      cb ? "callbacks" : "constants");
+            CHECK(st < 0 || (finite_d((double)r.L[0]) && r.L[0] >= 0 && r.Tr[0] >= 0 && r.Tr[0] <= 1),
+                  "%s: status %d, L %g, Tr %g", hrm_method_name(every_method[mi]), (int)st, (double)r.L[0],
+                  (double)r.Tr[0]);
+        }
+}
+
 void extremes_tests(void)
 {
     RUN_GROUP(xg_grid);
@@ -919,4 +944,5 @@ void extremes_tests(void)
     RUN_GROUP(rg_behind_equiangular);
     RUN_GROUP(rg_fixed_bound);
     RUN_GROUP(rg_rte_physical);
+    RUN_GROUP(rg_tiny_sigma_ref);
 }
