@@ -968,6 +968,85 @@ static void rg_long_sums(void)
     }
 }
 
+/* A user warp's calls within the budget: on a ray 1e-3 long at t0 = 1e9
+   (t resolves it to 1e-7) the nodes of Gauss-Kronrod's attempts fall on
+   remembered abscissae, costing no evaluation, while each calls t_of_u and
+   dt_du: 3 967 evaluations but 1 989 816 t_of_u calls. Now a call counts a
+   quarter against max_evals (hrm__spent): at most 4 max_evals, plus the
+   finish of what is left (a stack of HRM_MAX_DEPTH intervals of 15 nodes,
+   two calls each). The map t = t0 + T (u + u^2) / 2 on [0, 1]. */
+typedef struct rg_warp {
+    rg_scene s;
+    long calls;
+} rg_warp;
+static hrm_real rg_t_of_u(void *user, hrm_real u)
+{
+    rg_warp *w = (rg_warp *)user;
+    w->calls++;
+    return (hrm_real)(w->s.t0 + (w->s.t1 - w->s.t0) * ((double)u + (double)u * (double)u) / 2);
+}
+static hrm_real rg_dt_du(void *user, hrm_real u)
+{
+    rg_warp *w = (rg_warp *)user;
+    w->calls++;
+    return (hrm_real)((w->s.t1 - w->s.t0) * (0.5 + (double)u));
+}
+static hrm_real rg_u_of_t(void *user, hrm_real t)
+{
+    rg_warp *w = (rg_warp *)user;
+    double y = ((double)t - w->s.t0) / (w->s.t1 - w->s.t0);
+    w->calls++;
+    return (hrm_real)((-1 + sqrt(1 + 8 * (y > 0 ? y : 0))) / 2);
+}
+static void rg_warp_calls(void *u, hrm_real t, hrm_real out[NCH])
+{
+    rg_sa(&((rg_warp *)u)->s, t, out);
+}
+static void rg_warp_ss(void *u, hrm_real t, hrm_real out[NCH])
+{
+    rg_ss(&((rg_warp *)u)->s, t, out);
+}
+static void rg_warp_li(void *u, hrm_real t, hrm_real out[NCH])
+{
+    rg_li(&((rg_warp *)u)->s, t, out);
+}
+static void rg_warp_budget(void)
+{
+    int mode, mi;
+    static const hrm_method ms[3] = {HRM_GAUSS_KRONROD, HRM_NESTED_SIMPSON, HRM_DORMAND_PRINCE};
+    for (mi = 0; mi < 3; ++mi)
+        for (mode = 0; mode < 2; ++mode) {
+            rg_warp w;
+            hrm_medium m;
+            hrm_options o = hrm_default_options(ms[mi]);
+            hrm_result r;
+            hrm_status st;
+            long allowed;
+            memset(&w, 0, sizeof w);
+            w.s.sig = 1e3;
+            w.s.t0 = 1e9;
+            w.s.t1 = 1e9 + 1e-3;
+            memset(&m, 0, sizeof m);
+            m.user = &w;
+            m.sigma_a = rg_warp_calls;
+            m.sigma_s = rg_warp_ss;
+            m.Li = rg_warp_li;
+            o.warp.kind = HRM_WARP_USER;
+            o.warp.user = &w;
+            o.warp.t_of_u = rg_t_of_u;
+            o.warp.dt_du = rg_dt_du;
+            o.warp.u_of_t = rg_u_of_t;
+            o.max_evals = 2000;
+            o.rtol = (hrm_real)1e-6;
+            if (mode) o.gk_mode = HRM_GK_LOCAL;
+            if (mode && ms[mi] != HRM_GAUSS_KRONROD) continue;
+            st = hrm_solve(&m, (hrm_real)w.s.t0, (hrm_real)w.s.t1, &o, &r);
+            allowed = 4 * o.max_evals + 2 * 15 * (60 + 2) + 64; /* HRM_MAX_DEPTH 60 */
+            CHECK(w.calls <= allowed, "%s%s, ray 1e-3 at 1e9, max_evals 2000: %ld warp calls (status %d), at most %ld",
+                  hrm_method_name(ms[mi]), mode ? " (local)" : "", w.calls, (int)st, allowed);
+        }
+}
+
 void extremes_tests(void)
 {
     RUN_GROUP(xg_grid);
@@ -977,4 +1056,5 @@ void extremes_tests(void)
     RUN_GROUP(rg_rte_physical);
     RUN_GROUP(rg_tiny_sigma_ref);
     RUN_GROUP(rg_long_sums);
+    RUN_GROUP(rg_warp_budget);
 }
