@@ -325,9 +325,9 @@
    Forms of the IVP solvers (options.form): HRM_FORM_OPTICAL_DEPTH (the
    default), state (tau, A) with dA/dt = exp(-tau) S: nothing feeds back,
    L >= 0 and 0 <= Tr <= 1 at any step. HRM_FORM_RTE, dL/dt = S - sigma_t L
-   (Munoz eq. 1) marched from t1 to t0: explicit steps blow up past h
-   sigma_t = 2 (Euler), 2.79 (RK4), 0.3 (Adams-Bashforth), kept to
-   reproduce the papers' stiffness; beyond the range: HRM_ERR_RANGE.
+   (Munoz eq. 1) marched from t1 to t0: fixed steps blow up past h sigma_t
+   = 2 (Euler), 2.79 (RK4), 0.3 (Adams-Bashforth), the papers' stiffness
+   (warned); the pairs keep h sigma_t where R(-h sigma_t) is in [0, 1].
 
    ==========================================================================
    TOLERANCES (adaptive methods)
@@ -344,21 +344,21 @@
    larger), raised where the nodes miss the layer's 1 - Tr (decoupled tau:
    nodes that alias the medium). An interval whose error does not shrink
    (a jump, noise) may take rtol/16 of |L|, 16 times a call.
-   bench/results/summary.md ("Tolerance proportionality"): the worst
-   HRM_OK run on the smooth scenes is within 2.3 rtol, every default.
-   Missed tolerances return the best estimate and a warning: H_MIN (a step
-   at h_min failed), MAX_EVALS (stats.evals never exceeds max_evals),
+   The worst HRM_OK run on the smooth scenes is within 2.3 rtol, every
+   default (bench/results/summary.md). Missed tolerances return the best
+   estimate and a warning: H_MIN (a step at h_min failed), MAX_EVALS
+   (stats.evals never exceeds max_evals, a user warp's calls 4 max_evals),
    STORAGE (a finish HRM_MAX_DEPTH deep), ROUNDOFF (bisection no longer
    helps, or t cannot resolve a step), TOLERANCE (the accepted estimates
    exceed atol + 3 rtol |L|, also after one more pass at the scale found),
    RTOL_CLIPPED (rtol below 100 epsilons, raised to it).
    result.error: the sum of the accepted estimates per channel, whatever
-   the status (-1 for fixed-step methods). L lies in [0, the largest Le or
-   Li sampled times 1 - Tr]; what that cuts counts in result.error.
+   the status (-1 for fixed-step methods). Every L lies in [0, the largest
+   S/sigma_t sampled times 1 - Tr], what that cuts counted in result.error
+   (fixed steps: kept up to twice it; past: the bound, HRM_WARN_TOLERANCE).
    Not seen by any method: a feature between the samples of an accepted
    step (give a light its warp, an occluder its breakpoints). Munoz's and
-   Gonterman's controllers (options.control) keep their papers' own
-   definitions (eq. 12, eq. 3.4), unverified.
+   Gonterman's controllers (eq. 12, eq. 3.4) are unverified.
 
    ==========================================================================
    IMPORTANCE SAMPLING (options.warp; Munoz 2014 s.5)
@@ -370,9 +370,9 @@
                          extinction (lowered to what u resolves).
    HRM_WARP_EQUIANGULAR  u = atan((t - delta)/D), a point light D from the
                          ray at its foot delta (Munoz eq. 16; Kulla and
-                         Fajardo 2012): hrm_equiangular_warp. D = 0 with
-                         delta in [t0, t1]: HRM_ERR_SINGULAR; D = 0 outside
-                         it, or a range in u below sqrt(eps): no warp.
+                         Fajardo 2012): hrm_equiangular_warp. D = 0 (off
+                         the ray) or a range in u below sqrt(eps): none
+                         (t1 = +INFINITY: the distance warp, ROUNDOFF).
    HRM_WARP_USER         the host's t_of_u, dt_du (>= 0) and u_of_t.
    t1 = +INFINITY: valid where the warp maps it to a finite u (no callback
    sees infinity). The RTE form turns stiff under a warp (Munoz s.6).
@@ -711,7 +711,8 @@ typedef struct hrm_options {
                            bounds an adaptive method's attempts (steps
                            or intervals, accepted or rejected), which
                            cost no evaluation where their nodes fall on
-                           remembered abscissae. Fixed-step methods
+                           remembered abscissae, and a user warp's calls
+                           (a quarter each). Fixed-step methods
                            spend what N says and ignore it. */
     hrm_control control;/* Runge-Kutta step control. 0: HRM_CONTROL_PI */
     hrm_gk_mode gk_mode;/* Gauss-Kronrod. 0: HRM_GK_GLOBAL */
