@@ -355,7 +355,7 @@
    result.error: the sum of the accepted estimates per channel, whatever
    the status (-1 for fixed-step methods). Every L lies in [0, the largest
    S/sigma_t sampled times 1 - Tr], what that cuts counted in result.error
-   (fixed steps: kept up to twice it; past: the bound, HRM_WARN_TOLERANCE).
+   (fixed steps: up to twice it, Monte Carlo any; past: the bound, TOLERANCE).
    Not seen by any method: a feature between the samples of an accepted
    step (give a light its warp, an occluder its breakpoints). Munoz's and
    Gonterman's controllers (eq. 12, eq. 3.4) are unverified.
@@ -6643,7 +6643,9 @@ static hrm_status hrm__finish(hrm__ctx *c, const hrm_options *o, const hrm_real 
             }
             top = c->src_max[i] * absorbed[i] * (1 + 16 * HRM__EPS);
             slack = 16 * HRM__EPS * top;
-            if (!adaptive && !c->expo && l > top && l <= 2 * top) {
+            /* (Monte Carlo: any; a sample's value past it is no miss,
+               and cutting it would bias the mean over pixels) */
+            if (!adaptive && !c->expo && l > top && (l <= 2 * top || o->method == HRM_MONTE_CARLO)) {
                 top = l;
                 slack = top;
             }
