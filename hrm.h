@@ -5596,8 +5596,12 @@ static int hrm__worst_first(hrm__ctx *c, hrm__wf *w, hrm_real acc[HRM__NY])
             hrm_real f = c->closed ? 1 : HRM_EXP(-l->V[ch]); /* r is relative to its left end */
             hrm_real sum = l->V[HRM__CH + ch] + f * r->V[HRM__CH + ch];
             hrm_real esum = l->D[HRM__CH + ch] + f * r->D[HRM__CH + ch];
+            /* (not where nothing is seen yet: sum 0, the estimate what
+               lies before the first node, which halving reaches in
+               time: sigma_t T = 1e10 took 25 halvings, stopped at 10
+               with L = 0) */
             if (HRM_FABS(par.V[HRM__CH + ch] - sum) <= HRM__R(1e-5) * HRM_FABS(sum) &&
-                esum >= HRM__R(0.99) * par.D[HRM__CH + ch] && esum > 0) {
+                esum >= HRM__R(0.99) * par.D[HRM__CH + ch] && esum > 0 && sum != 0) {
                 roundoff++;
                 break;
             }

@@ -1047,6 +1047,37 @@ static void rg_warp_budget(void)
         }
 }
 
+/* Global Gauss-Kronrod in a thick medium as exact as the local variant:
+   sigma_t T = 1e10 (double) put every node of the first intervals past
+   Tr's underflow; each halving kept the value 0 and the estimate of what
+   lies before the first node, which QUADPACK's round-off test took for
+   round-off after 10 of the 25 halvings needed: L = 0 with
+   HRM_WARN_ROUNDOFF (local Gauss-Kronrod: 0.6, HRM_OK). Now L = 0.6
+   within 10 rtol for both modes, constants and callbacks, sigma_t T 1e8 to
+   1e12 (float: where h_min = 64 eps of u stops both modes alike, a
+   warning; HRM_OK only within 10 rtol). */
+static void rg_gk_thick(void)
+{
+    static const double taus[3] = {1e8, 1e10, 1e12};
+    int cb, ti, mode;
+    for (cb = 0; cb < 2; ++cb)
+        for (ti = 0; ti < 3; ++ti)
+            for (mode = 0; mode < 2; ++mode) {
+                rg_scene s = {taus[ti], 0, 1, 0, 0};
+                hrm_options o = hrm_default_options(HRM_GAUSS_KRONROD);
+                hrm_result r;
+                hrm_status st;
+                o.gk_mode = mode ? HRM_GK_LOCAL : HRM_GK_GLOBAL;
+                st = rg_solve(&s, cb, &o, &r);
+                if (!real_is_float())
+                    CHECK_INT(st, HRM_OK, "gauss-kronrod %s, %s, sigma_t T %g: status", mode ? "local" : "global",
+                              cb ? "callbacks" : "constants", taus[ti]);
+                if (st == HRM_OK || !real_is_float())
+                    CHECK_NEAR((double)r.L[0], 0.6, 10 * 1e-3 * 0.6, "gauss-kronrod %s, %s, sigma_t T %g: L",
+                               mode ? "local" : "global", cb ? "callbacks" : "constants", taus[ti]);
+            }
+}
+
 void extremes_tests(void)
 {
     RUN_GROUP(xg_grid);
@@ -1057,4 +1088,5 @@ void extremes_tests(void)
     RUN_GROUP(rg_tiny_sigma_ref);
     RUN_GROUP(rg_long_sums);
     RUN_GROUP(rg_warp_budget);
+    RUN_GROUP(rg_gk_thick);
 }
