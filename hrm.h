@@ -325,9 +325,9 @@
    Forms of the IVP solvers (options.form): HRM_FORM_OPTICAL_DEPTH (the
    default), state (tau, A) with dA/dt = exp(-tau) S: nothing feeds back,
    L >= 0 and 0 <= Tr <= 1 at any step. HRM_FORM_RTE, dL/dt = S - sigma_t L
-   (Munoz eq. 1) marched from t1 to t0: explicit steps blow up past h
-   sigma_t = 2 (Euler), 2.79 (RK4), 0.3 (Adams-Bashforth), kept to
-   reproduce the papers' stiffness; beyond the range: HRM_ERR_RANGE.
+   (Munoz eq. 1) marched from t1 to t0: fixed steps blow up past h sigma_t
+   = 2 (Euler), 2.79 (RK4), 0.3 (Adams-Bashforth), the papers' stiffness
+   (warned); the pairs keep h sigma_t where R(-h sigma_t) is in [0, 1].
 
    ==========================================================================
    TOLERANCES (adaptive methods)
@@ -344,21 +344,21 @@
    larger), raised where the nodes miss the layer's 1 - Tr (decoupled tau:
    nodes that alias the medium). An interval whose error does not shrink
    (a jump, noise) may take rtol/16 of |L|, 16 times a call.
-   bench/results/summary.md ("Tolerance proportionality"): the worst
-   HRM_OK run on the smooth scenes is within 2.3 rtol, every default.
-   Missed tolerances return the best estimate and a warning: H_MIN (a step
-   at h_min failed), MAX_EVALS (stats.evals never exceeds max_evals),
+   The worst HRM_OK run on the smooth scenes is within 2.3 rtol, every
+   default (bench/results/summary.md). Missed tolerances return the best
+   estimate and a warning: H_MIN (a step at h_min failed), MAX_EVALS
+   (stats.evals never exceeds max_evals, a user warp's calls 4 max_evals),
    STORAGE (a finish HRM_MAX_DEPTH deep), ROUNDOFF (bisection no longer
    helps, or t cannot resolve a step), TOLERANCE (the accepted estimates
    exceed atol + 3 rtol |L|, also after one more pass at the scale found),
    RTOL_CLIPPED (rtol below 100 epsilons, raised to it).
    result.error: the sum of the accepted estimates per channel, whatever
-   the status (-1 for fixed-step methods). L lies in [0, the largest Le or
-   Li sampled times 1 - Tr]; what that cuts counts in result.error.
+   the status (-1 for fixed-step methods). Every L lies in [0, the largest
+   S/sigma_t sampled times 1 - Tr], what that cuts counted in result.error
+   (fixed steps: up to twice it, Monte Carlo any; past: the bound, TOLERANCE).
    Not seen by any method: a feature between the samples of an accepted
    step (give a light its warp, an occluder its breakpoints). Munoz's and
-   Gonterman's controllers (options.control) keep their papers' own
-   definitions (eq. 12, eq. 3.4), unverified.
+   Gonterman's controllers (eq. 12, eq. 3.4) are unverified.
 
    ==========================================================================
    IMPORTANCE SAMPLING (options.warp; Munoz 2014 s.5)
@@ -370,9 +370,9 @@
                          extinction (lowered to what u resolves).
    HRM_WARP_EQUIANGULAR  u = atan((t - delta)/D), a point light D from the
                          ray at its foot delta (Munoz eq. 16; Kulla and
-                         Fajardo 2012): hrm_equiangular_warp. D = 0 with
-                         delta in [t0, t1]: HRM_ERR_SINGULAR; D = 0 outside
-                         it, or a range in u below sqrt(eps): no warp.
+                         Fajardo 2012): hrm_equiangular_warp. D = 0 (off
+                         the ray) or a range in u below sqrt(eps): none
+                         (t1 = +INFINITY: the distance warp, ROUNDOFF).
    HRM_WARP_USER         the host's t_of_u, dt_du (>= 0) and u_of_t.
    t1 = +INFINITY: valid where the warp maps it to a finite u (no callback
    sees infinity). The RTE form turns stiff under a warp (Munoz s.6).
@@ -720,7 +720,8 @@ typedef struct hrm_options {
                            bounds an adaptive method's attempts (steps
                            or intervals, accepted or rejected), which
                            cost no evaluation where their nodes fall on
-                           remembered abscissae. Fixed-step methods
+                           remembered abscissae, and a user warp's calls
+                           (a quarter each). Fixed-step methods
                            spend what N says and ignore it. */
     hrm_control control;/* Runge-Kutta step control. 0: HRM_CONTROL_PI */
     hrm_gk_mode gk_mode;/* Gauss-Kronrod. 0: HRM_GK_GLOBAL */
@@ -1505,6 +1506,9 @@ typedef struct hrm__ctx {
     struct hrm__ns_iv *finish; /* its finish's stack in the workspace, or NULL */
     struct hrm__gk_store *gks; /* global Gauss-Kronrod's */
     int unresolved;        /* a warp's distinct nodes at one abscissa */
+    long warp_calls;       /* the user warp's t_of_u and dt_du calls */
+    hrm_real ksum[HRM__NY];/* fixed-step IVPs: what the state's rounding
+                              lost, fed back (hrm__sum) */
     int use_le, use_li;    /* source terms present */
     int per_length;        /* HRM_EMISSION_PER_LENGTH */
     int rte;               /* HRM_FORM_RTE */
@@ -1577,6 +1581,10 @@ static HRM_DEVICE hrm_real hrm__range(hrm_real T)
 static HRM_DEVICE long hrm__spent(const hrm__ctx *c)
 {
     long work = c->stats.steps + c->stats.rejected;
+    /* a user warp's calls count a quarter each (two a node: an attempt
+       of 15 nodes on remembered abscissae cost 30 and no evaluation;
+       Gauss-Kronrod on a ray 1e-3 long at 1e9 called t_of_u 2e6 times) */
+    if (c->warp_calls / 4 > work) work = c->warp_calls / 4;
     return c->stats.evals > work ? c->stats.evals : work;
 }
 
@@ -2524,7 +2532,11 @@ static HRM_DEVICE HRM__CALL void hrm__map(hrm__ctx *c, hrm_real p, hrm_real *off
         o = j = 0;
         if (c->status != HRM_OK) break;
         o = c->uw->t_of_u(c->uw->user, p) - c->t0;
-        if (HRM__FINITE(o)) j = c->uw->dt_du(c->uw->user, p);
+        c->warp_calls++;
+        if (HRM__FINITE(o)) {
+            j = c->uw->dt_du(c->uw->user, p);
+            c->warp_calls++;
+        }
         if (!(HRM__FINITE(o) && HRM__FINITE(j) && j >= 0)) {
             if (c->status == HRM_OK) c->status = HRM_ERR_CALLBACK_VALUE;
             o = j = 0;
@@ -2728,6 +2740,10 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_wa
             c->warp = HRM_WARP_NONE;
             break;
         }
+        /* an infinite ray's reach ln(2/eps) / s within the range (s just
+           above the smallest normal number: the offsets overflowed, and
+           callbacks saw t = +inf) */
+        if (inf && !(reach / s <= hrm__range(1))) s = reach / hrm__range(1);
         c->w_sigma = s;
         c->pb = inf ? 1 : -HRM_EXPM1(-s * T);
         if (c->pb > 1 - HRM__EPS / 2) c->pb = 1 - HRM__EPS / 2;
@@ -2764,6 +2780,12 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_wa
             c->w_sin_b = 1;
             c->w_ub = HRM__R(1.5707963267948966);
             c->pb = c->w_ub * (1 - HRM__EPS);
+            /* a light behind t0 within an ulp of the line's angle (D 1e-12,
+               1 behind: pa rounds to pi/2): no range in u to sample (it
+               was reversed, L -16 391 with HRM_OK); hrm__setup takes the
+               distance warp instead, with a warning */
+            if (!(c->pb - c->pa > HRM_SQRT(HRM__EPS) * (HRM_FABS(c->pa) + HRM_FABS(c->pb))))
+                c->warp = HRM_WARP_NONE;
         } else {
             rb = HRM_HYPOT(db, D);
             c->w_cos_b = D / rb;
@@ -3529,9 +3551,22 @@ static HRM_DEVICE void hrm__closed_tr(hrm__ctx *c, hrm_real Tr[HRM__CH])
    2 uniform Monte Carlo. Uniform samples are generated already sorted
    (the minimum of n uniforms is 1 - U^(1/n), and the rest are uniform
    above it), so tau accumulates without storing them. */
+/* *s += x, compensated (Neumaier 1974): *e holds what the rounding of
+   *s lost and is fed back with the next term, so that *s stays within an
+   ulp or two of the exact sum however many terms it takes (float sums of
+   N = 1.6e7 samples stagnated: L 13% low with HRM_OK). A few additions a
+   sample; the fixed-step rules' sums of L and tau. */
+static HRM_DEVICE void hrm__sum(hrm_real *s, hrm_real *e, hrm_real x)
+{
+    hrm_real d = x + *e, t = *s + d;
+    *e = HRM_FABS(*s) >= HRM_FABS(d) ? (*s - t) + d : (d - t) + *s;
+    *s = t;
+}
+
 static HRM_DEVICE HRM__CALL void hrm__nodes(hrm__ctx *c, int N, int kind, hrm_real xi,
                        hrm_real L[HRM__CH], hrm_real tau[HRM__CH])
 {
+    hrm_real eL[HRM__CH] = {0}, eT[HRM__CH] = {0}, ex = 0; /* hrm__sum's */
     hrm_real w = (c->pb - c->pa) / (hrm_real)N, x = 0, prev_p = c->pa, prev_off = 0, end_off = 0, J;
     hrm_real prev_gs[HRM__CH];
     hrm__pt pt;
@@ -3550,7 +3585,7 @@ static HRM_DEVICE HRM__CALL void hrm__nodes(hrm__ctx *c, int N, int kind, hrm_re
         hrm_real p;
         if (kind == 2) {
             hrm_real u = 1 - hrm__uniform(&c->rng); /* (0, 1] */
-            x += (1 - x) * -HRM_EXPM1(HRM_LOG(u) / (hrm_real)(N - k));
+            hrm__sum(&x, &ex, (1 - x) * -HRM_EXPM1(HRM_LOG(u) / (hrm_real)(N - k)));
             p = c->pa + (c->pb - c->pa) * x;
         } else {
             if (kind == 1) xi = hrm__uniform(&c->rng);
@@ -3560,20 +3595,22 @@ static HRM_DEVICE HRM__CALL void hrm__nodes(hrm__ctx *c, int N, int kind, hrm_re
         for (i = 0; i < HRM__CH; ++i) {
             if (c->coupled) {
                 hrm_real mean = k ? (prev_gs[i] + pt.gs[i]) / 2 : pt.gs[i];
-                tau[i] += mean * (p - prev_p) + c->sbar[i] * (pt.off - prev_off);
-                if (tau[i] < 0) tau[i] = 0;
+                hrm__sum(&tau[i], &eT[i], mean * (p - prev_p) + c->sbar[i] * (pt.off - prev_off));
+                if (tau[i] < 0) tau[i] = eT[i] = 0;
                 prev_gs[i] = pt.gs[i];
             }
-            L[i] += w * hrm__att(c, &pt, i, tau[i]) * pt.gq[i];
+            hrm__sum(&L[i], &eL[i], w * hrm__att(c, &pt, i, tau[i]) * pt.gq[i]);
         }
         prev_p = p;
         prev_off = pt.off;
         c->stats.steps++;
         if (c->status != HRM_OK) return;
     }
+    for (i = 0; i < HRM__CH; ++i) L[i] += eL[i];
     if (c->coupled)
         for (i = 0; i < HRM__CH; ++i) {
-            tau[i] += prev_gs[i] * (c->pb - prev_p) + c->sbar[i] * (end_off - prev_off);
+            hrm__sum(&tau[i], &eT[i], prev_gs[i] * (c->pb - prev_p) + c->sbar[i] * (end_off - prev_off));
+            tau[i] += eT[i];
             if (tau[i] < 0) tau[i] = 0;
         }
 }
@@ -3807,6 +3844,10 @@ static HRM_DEVICE HRM__CALL void hrm__efit_panel(const hrm__ctx *c, const hrm__e
                 }
             }
             whole = last == n - 1 && j > last && bf > b && bf < HRM__R(HUGE_VAL);
+            /* the fitted exponential at y = -1 (the scale below) within
+               1 / TINY: with a slope of 1e17 it was exp(5e14), infinite,
+               while every sample had underflowed (0 times inf: NaN) */
+            if (whole && !(lf[0] + bf * (F->y[0] + 1) < -HRM_LOG(HRM__TINY))) whole = 0;
             if (whole) b = bf;
         }
         /* tau at y = -1 on the line not below 0 (exp(-tref) <= 1): the
@@ -3864,6 +3905,7 @@ static HRM_DEVICE HRM__CALL void hrm__march(hrm__ctx *c, int N, hrm_real xi, hrm
 {
     hrm_real span = c->pb - c->pa, off_l, off_r, J, tl[HRM__CH];
     hrm_real under = -HRM_LOG(HRM__TINY); /* hrm__neg_log's cap */
+    hrm_real eL[HRM__CH] = {0}, eT[HRM__CH] = {0}; /* hrm__sum's */
     hrm__pt pt;
     int k, i;
 
@@ -3898,11 +3940,12 @@ static HRM_DEVICE HRM__CALL void hrm__march(hrm__ctx *c, int N, hrm_real xi, hrm
                 /* sigma_t at the sample (the rules' sigma_t - sbar, plus sbar) */
                 hrm_real st = (pt.J > 0 ? pt.gs[i] / pt.J : 0) + c->sbar[i];
                 dtau = (st > 0 ? st : 0) * dt;
-                tr[i] = tau[i] + dtau;
+                tr[i] = tau[i];
+                hrm__sum(&tr[i], &eT[i], dtau);
             }
             if (!(dtau > 0)) dtau = 0;
             dL = Sdt * HRM_EXP(-(c->closed ? tl[i] : tau[i])) * hrm__phi1(dtau);
-            L[i] += dL;
+            hrm__sum(&L[i], &eL[i], dL);
             /* Tr underflowed within the step (transmittance callback):
                dtau only bounded below, dL above */
             if (c->tau_from_tr && tr[i] >= under && tl[i] < under) c->unsure[i] += dL;
@@ -3911,6 +3954,10 @@ static HRM_DEVICE HRM__CALL void hrm__march(hrm__ctx *c, int N, hrm_real xi, hrm
         }
         off_l = off_r;
         c->stats.steps++;
+    }
+    for (i = 0; i < HRM__CH; ++i) {
+        L[i] += eL[i];
+        if (!c->closed) tau[i] += eT[i];
     }
 }
 
@@ -3923,7 +3970,8 @@ static HRM_DEVICE HRM__CALL void hrm__march(hrm__ctx *c, int N, hrm_real xi, hrm
 /* One Simpson panel's parabola against the exact local exponential, added
    to L: a frame of its own, which a solve without a fit never holds. */
 static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__simpson_fit(hrm__ctx *c, const hrm__pt *a, const hrm__pt *mid,
-                                                                const hrm__pt *b, hrm_real H, hrm_real L[HRM__CH])
+                                                                const hrm__pt *b, hrm_real H, hrm_real L[HRM__CH],
+                                                                hrm_real eL[HRM__CH])
 {
     hrm__pt P3[3];
     hrm_real out[HRM__CH], mass[HRM__CH], g[HRM__EFIT_MAX][HRM__CH], un[HRM__CH];
@@ -3933,7 +3981,7 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__simpson_fit(hrm__ctx *c, con
     P3[2] = *b;
     hrm__efit_panel(c, &c->ef[0], P3, H / 2, out, mass, g, un);
     for (i = 0; i < HRM__CH; ++i) {
-        L[i] += out[i];
+        hrm__sum(&L[i], &eL[i], out[i]);
         c->unsure[i] += un[i];
     }
 }
@@ -3943,6 +3991,7 @@ static HRM_DEVICE HRM__CALL void hrm__simpson(hrm__ctx *c, int N, hrm_real L[HRM
     hrm__pt a, mid, b;
     hrm_real ea[HRM__CH]; /* exp(-tau) * gq at the panel's left end */
     hrm_real span = c->pb - c->pa;
+    hrm_real eL[HRM__CH] = {0}, eT[HRM__CH] = {0}; /* hrm__sum's */
     int k, i;
 
     hrm__eval(c, c->pa, &a);
@@ -3954,31 +4003,40 @@ static HRM_DEVICE HRM__CALL void hrm__simpson(hrm__ctx *c, int N, hrm_real L[HRM
         hrm__eval(c, pl + H / 2, &mid);
         hrm__eval(c, pr, &b);
         if (c->expo) {
-            hrm__simpson_fit(c, &a, &mid, &b, H, L);
+            hrm__simpson_fit(c, &a, &mid, &b, H, L, eL);
             a = b;
             c->stats.steps++;
-            if (c->status != HRM_OK) return;
+            if (c->status != HRM_OK) break;
             continue;
         }
         for (i = 0; i < HRM__CH; ++i) {
             hrm_real tm = 0, tb = 0, eb;
             if (c->coupled) {
-                tb = tau[i] + c->sbar[i] * (b.off - a.off) +
-                     H / 6 * (a.gs[i] + 4 * mid.gs[i] + b.gs[i]);
+                hrm_real e = eT[i];
+                tb = tau[i];
+                hrm__sum(&tb, &e, c->sbar[i] * (b.off - a.off) + H / 6 * (a.gs[i] + 4 * mid.gs[i] + b.gs[i]));
                 tm = tau[i] + c->sbar[i] * (mid.off - a.off) +
                      H / 24 * (5 * a.gs[i] + 8 * mid.gs[i] - b.gs[i]);
-                if (tb < tau[i]) tb = tau[i];
+                if (tb < tau[i]) {
+                    tb = tau[i];
+                    e = 0;
+                }
                 if (tm < tau[i]) tm = tau[i];
                 if (tm > tb) tm = tb;
+                eT[i] = e;
             }
             eb = hrm__att(c, &b, i, tb) * b.gq[i];
-            L[i] += H / 6 * (ea[i] + 4 * hrm__att(c, &mid, i, tm) * mid.gq[i] + eb);
+            hrm__sum(&L[i], &eL[i], H / 6 * (ea[i] + 4 * hrm__att(c, &mid, i, tm) * mid.gq[i] + eb));
             ea[i] = eb;
             tau[i] = tb;
         }
         a = b;
         c->stats.steps++;
-        if (c->status != HRM_OK) return;
+        if (c->status != HRM_OK) break;
+    }
+    for (i = 0; i < HRM__CH; ++i) {
+        L[i] += eL[i];
+        tau[i] += eT[i];
     }
 }
 
@@ -4213,7 +4271,9 @@ static HRM_DEVICE HRM__CALL int hrm__rk_quad(hrm__ctx *c, const hrm__nodes_info 
                 d[j] = g[j][i];
             }
             ynew[i] = y[i];
-            ynew[HRM__CH + i] = y[HRM__CH + i] + out[i];
+            ynew[HRM__CH + i] = y[HRM__CH + i];
+            if (err) ynew[HRM__CH + i] += out[i];
+            else hrm__sum(&ynew[HRM__CH + i], &c->ksum[HRM__CH + i], out[i]); /* fixed steps */
             if (err) {
                 err[i] = 0;
                 hrm_real e = eacc * mass[i]; /* an unsure step adds its bound */
@@ -4236,7 +4296,9 @@ static HRM_DEVICE HRM__CALL int hrm__rk_quad(hrm__ctx *c, const hrm__nodes_info 
             eacc += ni->ew[j] * f[j][i];
         }
         ynew[i] = y[i];
-        ynew[HRM__CH + i] = y[HRM__CH + i] + h * acc;
+        ynew[HRM__CH + i] = y[HRM__CH + i];
+        if (err) ynew[HRM__CH + i] += h * acc;
+        else hrm__sum(&ynew[HRM__CH + i], &c->ksum[HRM__CH + i], h * acc); /* fixed steps */
         if (err) {
             hrm_real e = h * eacc;
             err[i] = 0;
@@ -4303,7 +4365,9 @@ static HRM_DEVICE HRM__CALL int hrm__rk_step(hrm__ctx *c, const hrm__tableau *tb
             acc += tb->b[i] * k[i][n];
             if (err) eacc += (tb->b[i] - tb->bh[i]) * k[i][n];
         }
-        ynew[n] = y[n] + h * acc;
+        ynew[n] = y[n];
+        if (err) ynew[n] += h * acc;
+        else hrm__sum(&ynew[n], &c->ksum[n], h * acc); /* fixed steps */
         if (err) err[n] = h * eacc;
     }
     if (err && both) {
@@ -4328,7 +4392,8 @@ static HRM_DEVICE HRM__CALL int hrm__rk_step(hrm__ctx *c, const hrm__tableau *tb
         if (end_stage >= 0) off_end = pts[end_stage].off;
         else hrm__map(c, p_end, &off_end, &J);
         for (n = 0; n < HRM__CH; ++n) {
-            ynew[n] += c->sbar[n] * (off_end - start->off);
+            if (err) ynew[n] += c->sbar[n] * (off_end - start->off);
+            else hrm__sum(&ynew[n], &c->ksum[n], c->sbar[n] * (off_end - start->off));
             if (ynew[n] < y[n]) ynew[n] = y[n];
         }
     }
@@ -4358,6 +4423,7 @@ static HRM_DEVICE HRM__CALL void hrm__ivp_fixed(hrm__ctx *c, const hrm__tableau 
 
     hrm__nodes_init(tb, &ni);
     hrm__ivp_init(c, y);
+    hrm__fill(c->ksum, HRM__NY, 0);
     for (n = 0; n < N; ++n) {
         hrm_real p = from + (to - from) * ((hrm_real)n / (hrm_real)N);
         hrm_real q = n + 1 == N ? to : from + (to - from) * ((hrm_real)(n + 1) / (hrm_real)N);
@@ -4392,13 +4458,13 @@ static HRM_DEVICE HRM__CALL void hrm__ivp_fixed(hrm__ctx *c, const hrm__tableau 
                    holds sigma_t - sbar, whose sign means nothing: tau is
                    kept nondecreasing below instead.) */
                 if (!c->rte && i >= HRM__CH && ((pos && inc < 0) || (neg && inc > 0))) inc = 0;
-                y[i] += inc;
+                hrm__sum(&y[i], &c->ksum[i], inc);
             }
             if (c->coupled) {
                 hrm_real off_q, J;
                 hrm__map(c, q, &off_q, &J);
                 for (i = 0; i < HRM__CH; ++i) {
-                    y[i] += c->sbar[i] * (off_q - start.off);
+                    hrm__sum(&y[i], &c->ksum[i], c->sbar[i] * (off_q - start.off));
                     if (y[i] < tau_p[i]) y[i] = tau_p[i];
                 }
             }
@@ -4407,6 +4473,7 @@ static HRM_DEVICE HRM__CALL void hrm__ivp_fixed(hrm__ctx *c, const hrm__tableau 
         hrm__state_check(c, y, HRM__NY);
         if (c->status != HRM_OK) return;
     }
+    for (i = 0; i < HRM__NY; ++i) y[i] += c->ksum[i];
 }
 
 /* New evaluations of one step: the distinct nonzero nodes. */
@@ -4574,6 +4641,28 @@ static HRM_DEVICE void hrm__pair_calibrate(const hrm__ctx *c, const hrm__tableau
     }
 }
 
+/* The RTE form's step limit: the largest z such that the tableau's
+   stability function R(-z') = 1 - z' b^T (I + z' A)^-1 1 stays in [0, 1]
+   for every z' in [0, z] (Tr and L then decay monotonically over a step
+   in a homogeneous medium, as the exact solution does: no negative Tr, no
+   blow-up), by a scan in steps of 1/64. */
+static HRM_DEVICE hrm_real hrm__stab_limit(const hrm__tableau *tb)
+{
+    hrm_real z;
+    for (z = HRM__R(1.0 / 64); z < 8; z += HRM__R(1.0 / 64)) {
+        hrm_real g[HRM__MAX_STAGES], R = 1;
+        int i, j;
+        for (i = 0; i < tb->s; ++i) {
+            hrm_real acc = 0;
+            for (j = 0; j < i; ++j) acc += tb->a[i * tb->s + j] * g[j];
+            g[i] = 1 - z * acc;
+            R -= z * tb->b[i] * g[i];
+        }
+        if (!(R >= 0 && R <= 1)) break;
+    }
+    return z - HRM__R(1.0 / 64);
+}
+
 /* Adaptive Runge-Kutta driver. The last step lands exactly on the end; a
    budget about to run out finishes the ray in even unchecked steps
    (HRM_WARN_MAX_EVALS); a step refused at h_min is taken anyway
@@ -4588,6 +4677,8 @@ static HRM_DEVICE HRM__CALL void hrm__ivp_adaptive(hrm__ctx *c, const hrm__table
     hrm__pt start, end;
     int cost = hrm__stage_cost(tb), have = 0, after_reject = 0, first = 1, n;
     hrm__nodes_info ni;
+    /* the RTE form: h sigma_t at most zmax (hrm__stab_limit) */
+    hrm_real zmax = c->rte ? hrm__stab_limit(tb) : 0, hz = HRM__R(HUGE_VAL);
 
     hrm__nodes_init(tb, &ni);
     hrm__ivp_init(c, y);
@@ -4639,6 +4730,20 @@ static HRM_DEVICE HRM__CALL void hrm__ivp_adaptive(hrm__ctx *c, const hrm__table
         }
         if (control == HRM_CONTROL_PI) hrm__pair_calibrate(c, tb, hs, y, ynew, both);
         ratio = hrm__ratio(c, (int)control, p, q, y, ynew, control == HRM_CONTROL_PI ? both : err);
+        if (c->rte) {
+            /* a step past the stability limit (h sigma_t, in p, beyond
+               zmax at its ends) is refused whatever its estimate says
+               (Fehlberg at sigma_t 1e11: L = -584, Tr = 974 from steps
+               that passed), and none is tried past it; at h_min, or
+               forced, hrm__finish judges the result */
+            hrm_real g = 0;
+            for (n = 0; n < HRM__CH; ++n) {
+                if (start.gs[n] > g) g = start.gs[n];
+                if (have && end.gs[n] > g) g = end.gs[n];
+            }
+            hz = g > 0 ? zmax / g : HRM__R(HUGE_VAL);
+            if (hs > hz && hs > c->h_min && ratio <= 2) ratio = 2;
+        }
         accept = ratio <= 1 || forced;
         if (!accept && control == HRM_CONTROL_PI && c->rough_left > 0 &&
             hrm__rough(ratio, r_parent) && hrm__ratio(c, HRM__JUMP, p, q, y, ynew, both) <= 1) {
@@ -4689,6 +4794,7 @@ static HRM_DEVICE HRM__CALL void hrm__ivp_adaptive(hrm__ctx *c, const hrm__table
            NaN) */
         if (!(fac >= 0)) fac = HRM__R(0.2);
         h = hrm__clamp(hs * fac, c->h_min, c->h_max);
+        if (h > hz) h = hz > c->h_min ? hz : c->h_min;
     }
 }
 
@@ -5563,8 +5669,12 @@ static HRM_DEVICE HRM__CALL int hrm__worst_first(hrm__ctx *c, hrm__wf *w, hrm_re
             hrm_real f = c->closed ? 1 : HRM_EXP(-l->V[ch]); /* r is relative to its left end */
             hrm_real sum = l->V[HRM__CH + ch] + f * r->V[HRM__CH + ch];
             hrm_real esum = l->D[HRM__CH + ch] + f * r->D[HRM__CH + ch];
+            /* (not where nothing is seen yet: sum 0, the estimate what
+               lies before the first node, which halving reaches in
+               time: sigma_t T = 1e10 took 25 halvings, stopped at 10
+               with L = 0) */
             if (HRM_FABS(par.V[HRM__CH + ch] - sum) <= HRM__R(1e-5) * HRM_FABS(sum) &&
-                esum >= HRM__R(0.99) * par.D[HRM__CH + ch] && esum > 0) {
+                esum >= HRM__R(0.99) * par.D[HRM__CH + ch] && esum > 0 && sum != 0) {
                 roundoff++;
                 break;
             }
@@ -6025,10 +6135,25 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, 
         st = hrm__setup_warp(c, &none);
     } else {
         st = hrm__setup_warp(c, &o->warp);
+        if (st == HRM_ERR_BAD_INTERVAL && o->warp.kind == HRM_WARP_EQUIANGULAR && o->warp.D > 0) {
+            hrm_warp dw; /* the equiangular range unresolved (above) */
+            memset(&dw, 0, sizeof dw);
+            dw.kind = HRM_WARP_DISTANCE;
+            st = hrm__setup_warp(c, &dw);
+            hrm__warn(c, HRM_WARN_ROUNDOFF);
+        }
     }
     if (st == HRM_OK) st = c->status;
     if (st != HRM_OK) return st;
     c->off_end = c->s_end - c->t0;
+    if (!(c->off_end > 0) && !HRM__FINITE(c->T)) {
+        /* a warp's whole reach below one ulp of t0 (sigma 1e5 at t0 1e13):
+           the offsets still resolve it where t does not; the callbacks
+           see t0 alone (an empty layer had made L NaN with HRM_OK) */
+        hrm_real J;
+        hrm__map(c, c->pb, &c->off_end, &J);
+        hrm__warn(c, HRM_WARN_ROUNDOFF);
+    }
     if (layer) hrm__tau_init(layer, c->off_end, o->tau_tol);
     /* the breakpoints strictly inside what is integrated, as offsets */
     for (i = 0; i < o->nbreaks; ++i) {
@@ -6571,35 +6696,70 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__finish(hrm__ctx *c, const hrm_option
             Tr[i] = HRM_EXP(-y[i]);
         }
     }
-    for (i = 0; i < HRM__CH; ++i) err[i] = adaptive ? c->err_acc[i] : -1;
-    if (adaptive && !c->rte && !c->per_length) {
-        /* physically bounded whatever a budget cut short: 0 <= L <= the
-           largest S / sigma_t sampled (the larger of Le and Li where sigma_t
-           is not known at a sample, S / sigma_t being their weighted mean)
-           times 1 - Tr; what is cut off counts in the estimate */
-        for (i = 0; i < HRM__CH; ++i) {
-            hrm_real top = c->src_max[i] * absorbed[i] * (1 + 16 * HRM__EPS);
-            if (L[i] > top) {
-                err[i] += L[i] - top;
-                L[i] = top;
-            }
-            if (L[i] < 0) {
-                err[i] -= L[i];
-                L[i] = 0;
-            }
-            /* a cut beyond the tolerance: the rule missed, and HRM_OK
-               must not hide it (t's resolution on a ray far from the
-               origin under a user warp gave L 625 times too large, the
-               cut its only trace) */
-            if (err[i] > c->atol + 3 * c->rtol * HRM_FABS(L[i]) + 16 * HRM__EPS * HRM_FABS(L[i]))
-                hrm__warn(c, HRM_FABS(c->t0) > c->T ? HRM_WARN_ROUNDOFF : HRM_WARN_TOLERANCE);
+    for (i = 0; i < HRM__CH; ++i) {
+        err[i] = adaptive ? c->err_acc[i] : -1;
+        /* an estimate past the range (a forced step in the RTE form far
+           past its stability limit: NaN): none, the range instead */
+        if (adaptive && !(err[i] <= c->range)) {
+            err[i] = c->range;
+            hrm__warn(c, HRM_WARN_TOLERANCE);
         }
     }
-    if (adaptive && c->unresolved) hrm__warn(c, HRM_WARN_ROUNDOFF);
     for (i = 0; i < HRM__CH; ++i)
         /* fixed steps across the transmittance callback's underflow that
            count beyond round-off: upper bounds, not estimates */
         if (c->unsure[i] > 16 * HRM__EPS * HRM_FABS(L[i])) hrm__warn(c, HRM_WARN_ROUNDOFF);
+    if (!c->per_length) {
+        /* physically bounded whatever a budget cut short, a fixed step
+           overshot or an explicit step past its stability limit gave
+           (Simpson N = 32 on a ray 1e30 long: L = 1.4e27; Fehlberg in the
+           RTE form: Tr 1506): 0 <= Tr <= 1 and 0 <= L <= the largest S /
+           sigma_t sampled (the larger of Le and Li where sigma_t is not
+           known at a sample, S / sigma_t being their weighted mean) times
+           1 - Tr; what is cut off counts in the estimate. Fixed steps in
+           the RTE form keep the papers' blow-up (a warning only); fixed
+           steps without a fit keep up to twice the bound (a rule's error
+           where the sampled S / sigma_t and its own Tr are coarse: Euler
+           in a slab, clamped to the bound, reached 1e-2 at no N). */
+        for (i = 0; i < HRM__CH; ++i) {
+            hrm_real top, cut = 0, l = L[i], tr = Tr[i], slack;
+            int bad = 0;
+            if (c->rte && !(tr >= 0 && tr <= 1)) {
+                bad = !(tr >= -16 * HRM__EPS && tr <= 1 + 16 * HRM__EPS);
+                tr = tr > 1 ? 1 : 0;
+                absorbed[i] = 1 - tr;
+            }
+            top = c->src_max[i] * absorbed[i] * (1 + 16 * HRM__EPS);
+            slack = 16 * HRM__EPS * top;
+            /* (Monte Carlo: any; a sample's value past it is no miss,
+               and cutting it would bias the mean over pixels) */
+            if (!adaptive && !c->expo && l > top && (l <= 2 * top || o->method == HRM_MONTE_CARLO)) {
+                top = l;
+                slack = top;
+            }
+            if (l > top) {
+                cut = l - top;
+                l = top;
+            }
+            if (l < 0) {
+                cut = -l;
+                l = 0;
+            }
+            if (adaptive || !c->rte) {
+                L[i] = l;
+                Tr[i] = tr;
+            }
+            if (adaptive) err[i] += cut;
+            /* a cut beyond the tolerance: the rule missed, and HRM_OK
+               must not hide it (t's resolution on a ray far from the
+               origin under a user warp gave L 625 times too large, the
+               cut its only trace); fixed steps: beyond round-off */
+            if (bad || (adaptive ? err[i] > c->atol + 3 * c->rtol * HRM_FABS(l) + 16 * HRM__EPS * HRM_FABS(l)
+                                 : cut > slack))
+                hrm__warn(c, HRM_FABS(c->t0) > c->T ? HRM_WARN_ROUNDOFF : HRM_WARN_TOLERANCE);
+        }
+    }
+    if (adaptive && c->unresolved) hrm__warn(c, HRM_WARN_ROUNDOFF);
     if (c->status != HRM_OK) {
         hrm__fill(L, HRM__CH, 0);
         hrm__fill(Tr, HRM__CH, 1);
@@ -6812,8 +6972,12 @@ static HRM_DEVICE unsigned hrm__needs(const hrm_medium *m, const hrm_options *o,
     unsigned need = 0;
     hrm__sources(m, tr_only, &le, &li);
     src = hrm__tau_source(m, o, le || li);
+    /* (the equiangular warp on an infinite ray may fall back to the
+       distance warp: hrm__setup) */
     if (!estimator && (src == HRM__TAU_LAYER ||
-                       (sigma_cb && o->warp.kind == HRM_WARP_DISTANCE && !(tr_only && HRM__FINITE(t1)))))
+                       (sigma_cb && !(tr_only && HRM__FINITE(t1)) &&
+                        (o->warp.kind == HRM_WARP_DISTANCE ||
+                         (o->warp.kind == HRM_WARP_EQUIANGULAR && !HRM__FINITE(t1))))))
         need |= HRM__NEED_LAYER;
     if (hrm__is_adaptive(o->method)) need |= HRM__NEED_MEMO;
     if (o->exponential && hrm__tau_closed(src)) need |= HRM__NEED_EFIT;

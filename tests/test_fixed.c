@@ -860,7 +860,9 @@ static void test_eval_counts(void)
                     }
                     scene_reset_counts(&sc);
                     st = hrm_solve(&med, (hrm_real)t0, (hrm_real)t1, &o, &r);
-                    CHECK_INT(st, HRM_OK, "%s: status", what);
+                    /* (N = 1 or 2: L past twice its physical bound, or
+                       the RTE form's Tr outside [0, 1]: a warning) */
+                    CHECK(st == HRM_OK || st == HRM_WARN_TOLERANCE, "%s: status %d", what, (int)st);
                     CHECK_INT(r.stats.evals, ev, "%s: stats.evals", what);
                     CHECK_INT(r.stats.steps, n, "%s: stats.steps", what);
                     CHECK_INT(r.stats.rejected, 0, "%s: stats.rejected", what);
@@ -1052,7 +1054,11 @@ static void test_thick(void)
                     o.seed = (uint64_t)n;
                     o.jitter = variant;
                     o.stratified = variant;
-                    if (solve_opt(&p, 0, 10, &o, &r) != HRM_OK) bad++;
+                    hrm_status st = solve_opt(&p, 0, 10, &o, &r);
+                    /* a step count too coarse for the medium: L past twice
+                       its physical bound, the bound with
+                       HRM_WARN_TOLERANCE (hrm__finish) */
+                    if (st != HRM_OK && st != HRM_WARN_TOLERANCE) bad++;
                     for (c = 0; c < NCH; ++c) {
                         double L = (double)r.L[c], Tr = (double)r.Tr[c];
                         if (!(finite_d(L) && L >= 0 && Tr >= 0 && Tr <= 1)) {
@@ -1063,7 +1069,7 @@ static void test_thick(void)
                     }
                 }
             }
-            CHECK_INT(bad, 0, "thick %s %s: solves that did not return HRM_OK", s ? "heterogeneous" : "homogeneous", hrm_method_name(m));
+            CHECK_INT(bad, 0, "thick %s %s: solves that returned neither HRM_OK nor HRM_WARN_TOLERANCE", s ? "heterogeneous" : "homogeneous", hrm_method_name(m));
             CHECK_INT(unbounded, 0, "thick %s %s N=1..16: channels with L < 0, L not finite or Tr outside [0,1]",
                       s ? "heterogeneous" : "homogeneous", hrm_method_name(m));
         }
@@ -1087,13 +1093,16 @@ static void test_thick(void)
         double lam = problem_rate(&p);
         for (mi = 0; mi < N_DET; ++mi) {
             hrm_method m = det_methods[mi];
-            double prev = 1e300, first = 0, e = 0;
+            double prev = 1e300, first = -1, e = 0;
             long grew = 0;
             for (n = 16; n <= 65536; n *= 4) {
                 hrm_result r;
-                solve(&p, 0, 10, m, n, HRM_FORM_OPTICAL_DEPTH, &r);
+                /* from the first N whose rule stays within twice the
+                   physical bound (coarser: the bound itself, exact here,
+                   with HRM_WARN_TOLERANCE) */
+                if (solve(&p, 0, 10, m, n, HRM_FORM_OPTICAL_DEPTH, &r) != HRM_OK) continue;
                 e = rel_err_L(&p, 0, 10, &r);
-                if (n == 16) first = e;
+                if (first < 0) first = e;
                 if (verbose()) NOTE("thick %s N=%d: rel error %.3g", hrm_method_name(m), n, e);
                 if (!(e <= prev * (1 + 1e-9)) && m != HRM_ADAMS_BASHFORTH) {
                     NOTE("thick %s: rel. deviation %.6g at N=%d after %.6g", hrm_method_name(m), e, n, prev);

@@ -474,8 +474,12 @@ static void tr_stream_counts(void)
                     }
                     o.tau_mode = HRM_TAU_STREAM;
                     p.n_sigma = 0;
-                    CHECK_INT(hrm_solve(&ms, 0, 10, &o, &r), HRM_OK, "%s warp %d N %d breaks %d: status",
-                              hrm_method_name(m), w, ns[k], b);
+                    {   /* (Euler N = 1, 2: L past twice its physical
+                           bound, the bound with HRM_WARN_TOLERANCE) */
+                        hrm_status st = hrm_solve(&ms, 0, 10, &o, &r);
+                        CHECK(st == HRM_OK || (st == HRM_WARN_TOLERANCE && m == HRM_EULER && ns[k] <= 2),
+                              "%s warp %d N %d breaks %d: status %d", hrm_method_name(m), w, ns[k], b, (int)st);
+                    }
                     CHECK(p.n_sigma <= allowed, "%s warp %d N %d breaks %d: %ld sigma abscissae, at most %ld",
                           hrm_method_name(m), w, ns[k], b, p.n_sigma, allowed);
                     for (c = 0; c < NCH; ++c) {
