@@ -6337,38 +6337,38 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__solve_broken(hrm__ctx *c, co
                                                                  hrm_real y[HRM__NY])
 {
     const hrm__method_info *mi = &hrm__methods[o->method];
-    hrm_real P[HRM_MAX_BREAKS + 2], S[HRM_MAX_BREAKS + 2], pa = c->pa, pb = c->pb;
+    hrm_real P[HRM_MAX_BREAKS + 2], pa = c->pa, pb = c->pb;
     hrm_real yk[HRM__NY], err[HRM__CH], acc[HRM__CH];
     int n = c->nbrk + 1, N[HRM_MAX_BREAKS + 1], k, i, fixed;
     long max_evals = c->max_evals;
 
     P[0] = pa;
     P[n] = pb;
-    S[0] = -HRM__R(HUGE_VAL);
-    S[n] = HRM__R(HUGE_VAL);
     for (k = 1; k < n; ++k) {
         P[k] = hrm__unmap(c, c->brk_off[k - 1]);
         if (P[k] < P[k - 1]) P[k] = P[k - 1];
-        S[k] = c->t0 + c->brk_off[k - 1];
     }
     fixed = mi->family == HRM__FIXED_QUAD || mi->family == HRM__FIXED_IVP;
     if (fixed) {
-        /* N shared by length, at least 1 each, largest remainders */
-        hrm_real share[HRM_MAX_BREAKS + 1];
+        /* N shared by length, at least 1 each, then one more to the
+           largest remainders (recomputed: no table on the stack) */
         int left = o->steps;
         for (k = 0; k < n; ++k) {
-            share[k] = (hrm_real)o->steps * (P[k + 1] - P[k]) / (pb - pa);
-            N[k] = (int)share[k];
+            N[k] = (int)((hrm_real)o->steps * (P[k + 1] - P[k]) / (pb - pa));
             if (N[k] < 1) N[k] = 1;
             left -= N[k];
-            share[k] -= (hrm_real)N[k];
         }
         while (left > 0) {
             int best = 0;
-            for (k = 1; k < n; ++k)
-                if (share[k] > share[best]) best = k;
+            hrm_real most = 0;
+            for (k = 0; k < n; ++k) {
+                hrm_real r = (hrm_real)o->steps * (P[k + 1] - P[k]) / (pb - pa) - (hrm_real)N[k];
+                if (k == 0 || r > most) {
+                    best = k;
+                    most = r;
+                }
+            }
             N[best]++;
-            share[best] -= 1;
             left--;
         }
     }
@@ -6379,8 +6379,8 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__solve_broken(hrm__ctx *c, co
         if (!(P[k + 1] > P[k])) continue;
         c->pa = P[k];
         c->pb = P[k + 1];
-        c->s_lo = S[k];
-        c->s_hi = S[k + 1];
+        c->s_lo = k == 0 ? -HRM__R(HUGE_VAL) : c->t0 + c->brk_off[k - 1];
+        c->s_hi = k + 1 == n ? HRM__R(HUGE_VAL) : c->t0 + c->brk_off[k];
         if (c->src == HRM__TAU_STREAM && k > 0) hrm__stream_piece(c, c->brk_off[k - 1]);
         c->scale_fixed = 0;
         hrm__fill(c->scale, HRM__NY, 0);
@@ -6405,8 +6405,8 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__solve_broken(hrm__ctx *c, co
     memcpy(c->err_acc, err, sizeof err);
     c->pa = pa;
     c->pb = pb;
-    c->s_lo = S[0];
-    c->s_hi = S[n];
+    c->s_lo = -HRM__R(HUGE_VAL);
+    c->s_hi = HRM__R(HUGE_VAL);
 }
 
 /* The source S (per unit length) in every channel at parameter p, and the
