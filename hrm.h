@@ -6756,7 +6756,9 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__finish(hrm__ctx *c, const hrm_option
                cut its only trace); fixed steps: beyond round-off */
             if (bad || (adaptive ? err[i] > c->atol + 3 * c->rtol * HRM_FABS(l) + 16 * HRM__EPS * HRM_FABS(l)
                                  : cut > slack))
-                hrm__warn(c, HRM_FABS(c->t0) > c->T ? HRM_WARN_ROUNDOFF : HRM_WARN_TOLERANCE);
+                /* round-off where the ray spans fewer than 2^20 ulps of t */
+                hrm__warn(c, HRM_FABS(c->t0) * HRM__EPS * HRM__R(1048576.0) > c->T ? HRM_WARN_ROUNDOFF
+                                                                                  : HRM_WARN_TOLERANCE);
         }
     }
     if (adaptive && c->unresolved) hrm__warn(c, HRM_WARN_ROUNDOFF);
