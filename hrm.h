@@ -6330,6 +6330,14 @@ static HRM_DEVICE void hrm__solve_pieces(hrm__ctx *c, const hrm_options *o, hrm_
     hrm__solve_broken(c, o, y);
 }
 
+/* A piece [a, b]'s share of N steps by its length in [pa, pb], in [0, N]
+   (halves: no overflow on a ray across the whole range). */
+static HRM_DEVICE hrm_real hrm__share(int steps, hrm_real a, hrm_real b, hrm_real pa, hrm_real pb)
+{
+    hrm_real r = (hrm_real)steps * (b / 2 - a / 2) / (pb / 2 - pa / 2);
+    return !(r >= 0) ? 0 : r > (hrm_real)steps ? (hrm_real)steps : r;
+}
+
 /* The pieces between breakpoints, each solved on its own; the tables of
    their ends in a frame of its own, which a ray without breakpoints never
    holds. */
@@ -6345,8 +6353,10 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__solve_broken(hrm__ctx *c, co
     P[0] = pa;
     P[n] = pb;
     for (k = 1; k < n; ++k) {
+        /* within [the last end, pb], whatever the map gave */
         P[k] = hrm__unmap(c, c->brk_off[k - 1]);
-        if (P[k] < P[k - 1]) P[k] = P[k - 1];
+        if (!(P[k] >= P[k - 1])) P[k] = P[k - 1];
+        if (P[k] > pb) P[k] = pb;
     }
     fixed = mi->family == HRM__FIXED_QUAD || mi->family == HRM__FIXED_IVP;
     if (fixed) {
@@ -6354,7 +6364,7 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__solve_broken(hrm__ctx *c, co
            largest remainders (recomputed: no table on the stack) */
         int left = o->steps;
         for (k = 0; k < n; ++k) {
-            N[k] = (int)((hrm_real)o->steps * (P[k + 1] - P[k]) / (pb - pa));
+            N[k] = (int)hrm__share(o->steps, P[k], P[k + 1], pa, pb);
             if (N[k] < 1) N[k] = 1;
             left -= N[k];
         }
@@ -6362,7 +6372,7 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__solve_broken(hrm__ctx *c, co
             int best = 0;
             hrm_real most = 0;
             for (k = 0; k < n; ++k) {
-                hrm_real r = (hrm_real)o->steps * (P[k + 1] - P[k]) / (pb - pa) - (hrm_real)N[k];
+                hrm_real r = hrm__share(o->steps, P[k], P[k + 1], pa, pb) - (hrm_real)N[k];
                 if (k == 0 || r > most) {
                     best = k;
                     most = r;
