@@ -1118,13 +1118,19 @@ typedef struct hrm__tableau {
     int s, order;
     const hrm_real *a, *b, *c, *bh; /* bh: embedded weights, or NULL */
     int k; /* the error estimate is O(h^(k+1)) */
+    /* the RTE form's step limit in h sigma_t (pairs): the largest z, a
+       multiple of 1/64, with the stability function R(-z') = 1 - z' b^T
+       (I + z' A)^-1 1 in [0, 1] for every z' in [0, z], so that Tr and L
+       decay monotonically over a step as the exact solution does
+       (tests/test_tables.c recomputes it) */
+    hrm_real zmax;
 } hrm__tableau;
 
 /* Euler (1768). */
 static HRM__TABLE const hrm_real hrm__euler_a[] = {0};
 static HRM__TABLE const hrm_real hrm__euler_b[] = {1};
 static HRM__TABLE const hrm_real hrm__euler_c[] = {0};
-static HRM__TABLE const hrm__tableau hrm__euler = {1, 1, hrm__euler_a, hrm__euler_b, hrm__euler_c, 0, 0};
+static HRM__TABLE const hrm__tableau hrm__euler = {1, 1, hrm__euler_a, hrm__euler_b, hrm__euler_c, 0, 0, 0};
 
 /* Classical Runge-Kutta (Kutta 1901). */
 static HRM__TABLE const hrm_real hrm__rk4_a[] = {
@@ -1134,7 +1140,7 @@ static HRM__TABLE const hrm_real hrm__rk4_a[] = {
     0, 0, 1, 0};
 static HRM__TABLE const hrm_real hrm__rk4_b[] = {HRM__R(1.0 / 6), HRM__R(1.0 / 3), HRM__R(1.0 / 3), HRM__R(1.0 / 6)};
 static HRM__TABLE const hrm_real hrm__rk4_c[] = {0, HRM__R(0.5), HRM__R(0.5), 1};
-static HRM__TABLE const hrm__tableau hrm__rk4 = {4, 4, hrm__rk4_a, hrm__rk4_b, hrm__rk4_c, 0, 0};
+static HRM__TABLE const hrm__tableau hrm__rk4 = {4, 4, hrm__rk4_a, hrm__rk4_b, hrm__rk4_c, 0, 0, 0};
 
 /* Adams-Bashforth 4-step (Bashforth & Adams 1883), newest value first. */
 static HRM__TABLE const hrm_real hrm__ab4_beta[4] = {HRM__R(55.0 / 24), HRM__R(-59.0 / 24), HRM__R(37.0 / 24), HRM__R(-9.0 / 24)};
@@ -1207,11 +1213,11 @@ static HRM__TABLE const hrm_real hrm__vr_bh[] = {HRM__R(13.0 / 160), 0, HRM__R(2
                                       HRM__R(3.0 / 44), 0, 0};
 static HRM__TABLE const hrm_real hrm__vr_c[] = {0, HRM__R(1.0 / 6), HRM__R(4.0 / 15), HRM__R(2.0 / 3), HRM__R(5.0 / 6), 1, HRM__R(1.0 / 15), 1};
 
-static HRM__TABLE const hrm__tableau hrm__bs = {4, 3, hrm__bs_a, hrm__bs_b, hrm__bs_c, hrm__bs_bh, 2};
-static HRM__TABLE const hrm__tableau hrm__dp = {7, 5, hrm__dp_a, hrm__dp_b, hrm__dp_c, hrm__dp_bh, 4};
-static HRM__TABLE const hrm__tableau hrm__rkf = {6, 4, hrm__rkf_a, hrm__rkf_b, hrm__rkf_c, hrm__rkf_bh, 4};
-static HRM__TABLE const hrm__tableau hrm__ck = {6, 4, hrm__ck_a, hrm__ck_b, hrm__ck_c, hrm__ck_bh, 4};
-static HRM__TABLE const hrm__tableau hrm__vr = {8, 6, hrm__vr_a, hrm__vr_b, hrm__vr_c, hrm__vr_bh, 5};
+static HRM__TABLE const hrm__tableau hrm__bs = {4, 3, hrm__bs_a, hrm__bs_b, hrm__bs_c, hrm__bs_bh, 2, HRM__R(102.0 / 64)};
+static HRM__TABLE const hrm__tableau hrm__dp = {7, 5, hrm__dp_a, hrm__dp_b, hrm__dp_c, hrm__dp_bh, 4, HRM__R(211.0 / 64)};
+static HRM__TABLE const hrm__tableau hrm__rkf = {6, 4, hrm__rkf_a, hrm__rkf_b, hrm__rkf_c, hrm__rkf_bh, 4, HRM__R(131.0 / 64)};
+static HRM__TABLE const hrm__tableau hrm__ck = {6, 4, hrm__ck_a, hrm__ck_b, hrm__ck_c, hrm__ck_bh, 4, HRM__R(269.0 / 64)};
+static HRM__TABLE const hrm__tableau hrm__vr = {8, 6, hrm__vr_a, hrm__vr_b, hrm__vr_c, hrm__vr_bh, 5, HRM__R(181.0 / 64)};
 
 /* Gauss-Kronrod G7/K15 on [-1, 1], the 15 nodes ascending with their
    Kronrod weights and the Gauss weights (0 off the G7 nodes) (Piessens et
@@ -4641,28 +4647,6 @@ static HRM_DEVICE void hrm__pair_calibrate(const hrm__ctx *c, const hrm__tableau
     }
 }
 
-/* The RTE form's step limit: the largest z such that the tableau's
-   stability function R(-z') = 1 - z' b^T (I + z' A)^-1 1 stays in [0, 1]
-   for every z' in [0, z] (Tr and L then decay monotonically over a step
-   in a homogeneous medium, as the exact solution does: no negative Tr, no
-   blow-up), by a scan in steps of 1/64. */
-static HRM_DEVICE hrm_real hrm__stab_limit(const hrm__tableau *tb)
-{
-    hrm_real z;
-    for (z = HRM__R(1.0 / 64); z < 8; z += HRM__R(1.0 / 64)) {
-        hrm_real g[HRM__MAX_STAGES], R = 1;
-        int i, j;
-        for (i = 0; i < tb->s; ++i) {
-            hrm_real acc = 0;
-            for (j = 0; j < i; ++j) acc += tb->a[i * tb->s + j] * g[j];
-            g[i] = 1 - z * acc;
-            R -= z * tb->b[i] * g[i];
-        }
-        if (!(R >= 0 && R <= 1)) break;
-    }
-    return z - HRM__R(1.0 / 64);
-}
-
 /* Adaptive Runge-Kutta driver. The last step lands exactly on the end; a
    budget about to run out finishes the ray in even unchecked steps
    (HRM_WARN_MAX_EVALS); a step refused at h_min is taken anyway
@@ -4677,8 +4661,8 @@ static HRM_DEVICE HRM__CALL void hrm__ivp_adaptive(hrm__ctx *c, const hrm__table
     hrm__pt start, end;
     int cost = hrm__stage_cost(tb), have = 0, after_reject = 0, first = 1, n;
     hrm__nodes_info ni;
-    /* the RTE form: h sigma_t at most zmax (hrm__stab_limit) */
-    hrm_real zmax = c->rte ? hrm__stab_limit(tb) : 0, hz = HRM__R(HUGE_VAL);
+    /* the RTE form: h sigma_t at most the tableau's zmax */
+    hrm_real zmax = c->rte ? tb->zmax : 0, hz = HRM__R(HUGE_VAL);
 
     hrm__nodes_init(tb, &ni);
     hrm__ivp_init(c, y);

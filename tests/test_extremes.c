@@ -893,7 +893,7 @@ static void rg_rte_physical(void)
                 CHECK(Tr >= 0 && Tr <= 1 && L >= 0 && L <= 0.6 * (1 + 1e3 * real_eps()) * (1 - Tr),
                       "%s rte, %s, tau 1e4: channel %d: L %g, Tr %g physical", hrm_method_name(pairs[mi]),
                       cb ? "callbacks" : "constants", c, L, Tr);
-                /* steps within the stability limit (hrm__stab_limit):
+                /* steps within the stability limit (hrm__tableau.zmax):
                    right whatever the status */
                 CHECK_NEAR(L, 0.6, 10 * (double)o.rtol * 0.6, "%s rte, %s, tau 1e4: L (status %d)",
                            hrm_method_name(pairs[mi]), cb ? "callbacks" : "constants", (int)st);

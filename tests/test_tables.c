@@ -235,8 +235,58 @@ static void ad_gk_tables(void)
 
 /* ======================================================================== */
 
+/* The pairs' step limit in the RTE form (hrm__tableau.zmax): the
+   stability function R(-z) = 1 - z b^T (I + z A)^-1 1 of each explicit
+   tableau, by forward substitution in double from its own coefficients,
+   lies in [0, 1] at every z in [0, zmax] on a grid of 1/1024 (Tr and L
+   decay monotonically over a step, as the exact solution does), and
+   leaves it by the next 1/64 past zmax (the limit is the largest such
+   multiple of 1/64, not a smaller one). */
+static double ad_stability(const hrm__tableau *tb, double z)
+{
+    double g[16], R = 1;
+    int i, j;
+    for (i = 0; i < tb->s; ++i) {
+        double acc = 0;
+        for (j = 0; j < i; ++j) acc += (double)tb->a[i * tb->s + j] * g[j];
+        g[i] = 1 - z * acc;
+        R -= z * (double)tb->b[i] * g[i];
+    }
+    return R;
+}
+
+static void ad_step_limit(void)
+{
+    int p;
+    for (p = 0; p < 5; ++p) {
+        const hrm__tableau *tb = hrm__methods[HRM_BOGACKI_SHAMPINE + p].tb;
+        const char *name = hrm_method_name((hrm_method)(HRM_BOGACKI_SHAMPINE + p));
+        double zmax = (double)tb->zmax, z, worst = 0, past = 0;
+        int k, inside = 1, leaves = 0;
+        CHECK(zmax > 1 && zmax * 64 == floor(zmax * 64), "%s: zmax %.6g a multiple of 1/64 above 1", name, zmax);
+        for (k = 0; k <= (int)(zmax * 1024); ++k) {
+            double R = ad_stability(tb, k / 1024.0);
+            if (!(R >= 0 && R <= 1)) {
+                inside = 0;
+                worst = R;
+            }
+        }
+        for (z = zmax + 1 / 1024.0; z <= zmax + 1 / 64.0 + 1e-12; z += 1 / 1024.0) {
+            double R = ad_stability(tb, z);
+            if (!(R >= 0 && R <= 1)) {
+                leaves = 1;
+                past = R;
+                break;
+            }
+        }
+        CHECK(inside, "%s: R(-z) in [0, 1] on [0, %.6g] (%.6g)", name, zmax, worst);
+        CHECK(leaves, "%s: R(-z) leaves [0, 1] within 1/64 past %.6g (%.6g)", name, zmax, past);
+    }
+}
+
 void table_tests(void)
 {
     RUN_GROUP(ad_tableaus);
     RUN_GROUP(ad_gk_tables);
+    RUN_GROUP(ad_step_limit);
 }
