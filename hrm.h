@@ -1522,7 +1522,7 @@ typedef struct hrm__ctx {
     hrm_stats stats;
     hrm_warp_kind warp;    /* the warp in use, after fallbacks */
     hrm_real w_sigma;      /* distance */
-    hrm_real w_D, w_ra;    /* equiangular: D, distance from the light to t0 */
+    hrm_real w_D, w_ra, w_rb; /* equiangular: D, distance from the light to t0, t1 (0: inf) */
     hrm_real w_cos_a, w_sin_a, w_cos_b, w_sin_b, w_ub; /* cos, sin of u(t0),
                               u(t1); u(t1) itself (pi/2 for t1 = inf) */
     const hrm_warp *uw;    /* user */
@@ -1964,7 +1964,9 @@ static HRM_DEVICE HRM__CALL void hrm__stream_to(hrm__ctx *c, hrm_real x, int sid
     hrm__stream *S = &c->sm;
     hrm_real st[HRM__CH], last;
     long k, j;
-    if (S->n == 0 && x > S->start) {
+    /* (a first node within rounding of the piece's start is its start:
+       both are sampled 64 ulps inside, at one t) */
+    if (S->n == 0 && x - S->start > 4 * HRM__EPS * HRM_FABS(x)) {
         hrm__sigma_t_at(c, S->start, 1, st);
         hrm__stream_push(S, S->start, st);
     }
@@ -2520,11 +2522,16 @@ static HRM_DEVICE HRM__CALL void hrm__map(hrm__ctx *c, hrm_real p, hrm_real *off
         /* cos p from the nearer end's exact cos and sin, moving away from
            +-pi/2, where cos p is small and a plain cos(p) imprecise. */
         hrm_real d = p - c->w_ua, e = c->w_ub - p, cp;
-        if (d <= e)
+        if (d <= e) {
             cp = c->w_cos_a * HRM_COS(d) - c->w_sin_a * HRM_SIN(d);
-        else
+            o = c->w_ra * HRM_SIN(d) / cp; /* D / cos(pa) = distance to t0 */
+        } else {
+            /* the offset from t1's too (D / cos(pb) = distance to t1): sin d
+               near pi carries eps pi of d, eps pi r / D of T at the end (D =
+               1e-12 T: 1e-4 T) */
             cp = c->w_cos_b * HRM_COS(e) + c->w_sin_b * HRM_SIN(e);
-        o = c->w_ra * HRM_SIN(d) / cp; /* D / cos(pa) = distance to t0 */
+            o = c->w_rb > 0 ? c->T - c->w_rb * HRM_SIN(e) / cp : c->w_ra * HRM_SIN(d) / cp;
+        }
         j = c->w_D / (cp * cp);
         break;
     }
@@ -2775,6 +2782,7 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_wa
         c->w_cos_a = D / c->w_ra;
         c->w_sin_a = da / c->w_ra;
         c->pa = c->w_ua = HRM_ATAN2(da, D);
+        c->w_rb = 0;
         if (inf) {
             c->w_cos_b = 0;
             c->w_sin_b = 1;
@@ -2787,7 +2795,7 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_wa
             if (!(c->pb - c->pa > HRM_SQRT(HRM__EPS) * (HRM_FABS(c->pa) + HRM_FABS(c->pb))))
                 c->warp = HRM_WARP_NONE;
         } else {
-            rb = HRM_HYPOT(db, D);
+            c->w_rb = rb = HRM_HYPOT(db, D);
             c->w_cos_b = D / rb;
             c->w_sin_b = db / rb;
             c->pb = c->w_ub = HRM_ATAN2(db, D);

@@ -1078,6 +1078,44 @@ static void rg_gk_thick(void)
             }
 }
 
+/* The equiangular warp's offsets on the light's far side: hrm's map gave
+   s - t0 = r_a sin(p - pa) / cos p everywhere, and near the far end sin(p
+   - pa) (pa about -pi/2, p about pi/2) carries eps pi of its argument, eps
+   pi r / D of T where cos p is D / r: the steps of the analytic march
+   (sigma callbacks: tau a step from their ends' offsets) summed to a tau
+   1e-3 off (D = 1e-12 T: Tr 0.999001 for 0.999, 0.367888 for 0.367879
+   with HRM_OK). Offsets past the light are now taken from t1. The light
+   0.4 T from t0; Tr within the grid's round-off of the warp
+   (XG_WARP_COND fp_floor(N, tau)), L with callbacks within that of L
+   with constants (one and the same medium). */
+static void rg_equiangular_far(void)
+{
+    static const double Ds[2][2] = {{1e-12, 1e-9}, {1e-5, 1e-3}}, taus[2] = {1e-3, 1};
+    static const int Ns[2] = {32, 256};
+    int di, ti, ni;
+    for (di = 0; di < 2; ++di)
+        for (ti = 0; ti < 2; ++ti)
+            for (ni = 0; ni < 2; ++ni) {
+                rg_scene s = {taus[ti], 0, 1, 0, 0};
+                hrm_options o = hrm_default_options(HRM_ANALYTIC_MARCH);
+                hrm_result r[2];
+                hrm_status st[2];
+                double D = Ds[real_is_float()][di], fp = XG_WARP_COND * fp_floor(Ns[ni], taus[ti]);
+                int cb;
+                o.steps = Ns[ni];
+                o.warp.kind = HRM_WARP_EQUIANGULAR;
+                o.warp.delta = (hrm_real)0.4;
+                o.warp.D = (hrm_real)D;
+                for (cb = 0; cb < 2; ++cb) st[cb] = rg_solve(&s, cb, &o, &r[cb]);
+                CHECK(st[0] == HRM_OK && st[1] == HRM_OK, "analytic march, D %g, tau %g, N %d: status %d, %d", D,
+                      taus[ti], Ns[ni], (int)st[0], (int)st[1]);
+                CHECK_NEAR((double)r[1].Tr[0], exp(-taus[ti]), fp * exp(-taus[ti]),
+                           "analytic march, callbacks, D %g, tau %g, N %d: Tr", D, taus[ti], Ns[ni]);
+                CHECK_NEAR((double)r[1].L[0], (double)r[0].L[0], fp * (double)r[0].L[0],
+                           "analytic march, D %g, tau %g, N %d: L with callbacks, with constants", D, taus[ti], Ns[ni]);
+            }
+}
+
 void extremes_tests(void)
 {
     RUN_GROUP(xg_grid);
@@ -1089,4 +1127,5 @@ void extremes_tests(void)
     RUN_GROUP(rg_long_sums);
     RUN_GROUP(rg_warp_budget);
     RUN_GROUP(rg_gk_thick);
+    RUN_GROUP(rg_equiangular_far);
 }
