@@ -5245,6 +5245,19 @@ static HRM_DEVICE HRM__CALL void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, co
         /* the warp's miss at the nodes' S Tr there, where it is larger */
         if (!is_tau && wmiss > 0 && pt[je].J > 0 && HRM_FABS(f[je]) / pt[je].J * wmiss > ek[n])
             ek[n] = HRM_FABS(f[je]) / pt[je].J * wmiss;
+        /* the round-off of the nodes' abscissae, eps |p| each, which moves
+           tau by its slope in p times that: where a warp packs many optical
+           depths into a stretch of p far from 0 (the equiangular warp near
+           -pi/2, a light 1e-4 T off, sigma_t T 1e6: 10 optical depths in
+           6e-9 of p), L's round-off, which no estimate of the rule sees (K7
+           at rtol 1e-8: 7.5e-8 off, its estimates 5e-9, HRM_OK); kept
+           apart from |K - G|, which the callers scale by the rate splits
+           show, as the medium's miss is */
+        if (!is_tau && !c->coupled && pt[N - 1].p > pt[0].p) {
+            hrm_real r = rabs * HRM__EPS * (HRM_FABS(a) > HRM_FABS(b) ? HRM_FABS(a) : HRM_FABS(b)) *
+                         (pt[N - 1].tau[ch] - pt[0].tau[ch]) / (pt[N - 1].p - pt[0].p);
+            if (r > io->M[ch]) io->M[ch] = r;
+        }
         if (chk && !is_tau) {
             hrm_real mis = hrm__gk_check_miss(c, R, pt, f, hl, lw, io, ch);
             if (mis > ek[n]) {
