@@ -356,9 +356,9 @@
    the status (-1 for fixed-step methods). Every L lies in [0, the largest
    S/sigma_t sampled times 1 - Tr], what that cuts counted in result.error
    (fixed steps: up to twice it, Monte Carlo any; past: the bound, TOLERANCE).
-   Not seen by any method: a feature between the samples of an accepted
-   step (give a light its warp, an occluder its breakpoints). Munoz's and
-   Gonterman's controllers (eq. 12, eq. 3.4) are unverified.
+   Not seen: a feature between an accepted step's samples (a light needs
+   its warp, an occluder its breakpoints; constants and callbacks may see
+   it apart). Munoz's, Gonterman's controllers (eq. 12, 3.4) unverified.
 
    ==========================================================================
    IMPORTANCE SAMPLING (options.warp; Munoz 2014 s.5)
