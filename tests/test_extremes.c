@@ -1200,6 +1200,72 @@ static void rg_gk_packed(void)
                 }
 }
 
+/* A pair's first step many optical depths thick: Tr falls by exp(-d)
+   over it, which no polynomial through its nodes follows, and the
+   embedded estimate stops measuring the rule's miss (salted grid case
+   #229801: Bogacki-Shampine, rtol 0.1, sigma callbacks, a user warp, the
+   first step d = 6.4 from Tr = 1: L 53% high, the estimate 27%, HRM_OK;
+   with constants the bound on L cut it, with HRM_WARN_TOLERANCE). Now
+   hrm__rk_exp_miss adds the rule's miss of the exponential. The case's
+   ray [1e9, 2e9] with breakpoints at 0.3 and 0.55 of it, every pair,
+   sigma_t T 1e4 and 1.6667e4 (its thickest channel), rtol 0.1 and 0.03,
+   constants and callbacks, no warp and its user warp t = t0 + T (u +
+   u^2) / 2: L = 0.6 within 5 rtol with HRM_OK, within that and the
+   estimate with a warning. */
+static hrm_real rg_quad_t(void *user, hrm_real u)
+{
+    const rg_scene *s = (const rg_scene *)user;
+    return (hrm_real)(s->t0 + (s->t1 - s->t0) * ((double)u + (double)u * (double)u) / 2);
+}
+static hrm_real rg_quad_dt(void *user, hrm_real u)
+{
+    const rg_scene *s = (const rg_scene *)user;
+    return (hrm_real)((s->t1 - s->t0) * (0.5 + (double)u));
+}
+static hrm_real rg_quad_u(void *user, hrm_real t)
+{
+    const rg_scene *s = (const rg_scene *)user;
+    double y = ((double)t - s->t0) / (s->t1 - s->t0);
+    if ((double)t == s->t1) return 1;
+    y = y > 0 ? y : 0;
+    return (hrm_real)(4 * y / (1 + sqrt(1 + 8 * y)));
+}
+
+static void rg_pair_thick_step(void)
+{
+    static const hrm_method pairs[5] = {HRM_BOGACKI_SHAMPINE, HRM_DORMAND_PRINCE, HRM_FEHLBERG, HRM_CASH_KARP,
+                                        HRM_VERNER};
+    static const double taus[2] = {1e4, 1.6667e4}, rtols[2] = {0.1, 0.03};
+    int mi, ti, ri, cb, w;
+    for (mi = 0; mi < 5; ++mi)
+        for (ti = 0; ti < 2; ++ti)
+            for (ri = 0; ri < 2; ++ri)
+                for (cb = 0; cb < 2; ++cb)
+                    for (w = 0; w < 2; ++w) {
+                        rg_scene s = {taus[ti] / 1e9, 1e9, 2e9, 0, 0};
+                        hrm_options o = hrm_default_options(pairs[mi]);
+                        hrm_real brk[2] = {(hrm_real)1.3e9, (hrm_real)1.55e9};
+                        hrm_result r;
+                        hrm_status st;
+                        o.rtol = (hrm_real)rtols[ri];
+                        o.breaks = brk;
+                        o.nbreaks = 2;
+                        if (w) {
+                            o.warp.kind = HRM_WARP_USER;
+                            o.warp.user = &s;
+                            o.warp.t_of_u = rg_quad_t;
+                            o.warp.dt_du = rg_quad_dt;
+                            o.warp.u_of_t = rg_quad_u;
+                        }
+                        st = rg_solve(&s, cb, &o, &r);
+                        CHECK(st >= 0, "%s: status %d", hrm_method_name(pairs[mi]), (int)st);
+                        CHECK_NEAR((double)r.L[0], 0.6, 5 * rtols[ri] * 0.6 + (st > 0 ? (double)r.error[0] : 0),
+                                   "%s, %s, %s, sigma_t T %g, rtol %g: L (status %d)", hrm_method_name(pairs[mi]),
+                                   cb ? "callbacks" : "constants", w ? "user warp" : "no warp", taus[ti], rtols[ri],
+                                   (int)st);
+                    }
+}
+
 void extremes_tests(void)
 {
     RUN_GROUP(xg_grid);
@@ -1214,4 +1280,5 @@ void extremes_tests(void)
     RUN_GROUP(rg_equiangular_far);
     RUN_GROUP(rg_gk_equiangular);
     RUN_GROUP(rg_gk_packed);
+    RUN_GROUP(rg_pair_thick_step);
 }
