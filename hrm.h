@@ -5147,8 +5147,9 @@ static HRM_DEVICE hrm_real hrm__gk_check_miss(const hrm__ctx *c, const hrm__gk_p
    offsets' and the rule's), 0 under no
    warp or the distance warp (whose ds/dp peaks where Tr has fallen with
    it); *je: the node nearest the end where ds/dp is larger, whose S Tr
-   weighs the miss. */
-static HRM_DEVICE HRM__CALL hrm_real hrm__gk_warp_miss(hrm__ctx *c, const hrm__gk_pair *R, const hrm__pt *pt,
+   weighs the miss. (pt not const: g++ under nvcc took a const pointer
+   to the caller's array for a read before its nodes were filled.) */
+static HRM_DEVICE HRM__CALL hrm_real hrm__gk_warp_miss(hrm__ctx *c, const hrm__gk_pair *R, hrm__pt *pt,
                                    hrm_real a, hrm_real b, int *je)
 {
     hrm_real oa, ob, J, rj = 0, rabs = 0, hl = (b - a) / 2, fl;
