@@ -356,9 +356,9 @@
    the status (-1 for fixed-step methods). Every L lies in [0, the largest
    S/sigma_t sampled times 1 - Tr], what that cuts counted in result.error
    (fixed steps: up to twice it, Monte Carlo any; past: the bound, TOLERANCE).
-   Not seen by any method: a feature between the samples of an accepted
-   step (give a light its warp, an occluder its breakpoints). Munoz's and
-   Gonterman's controllers (eq. 12, eq. 3.4) are unverified.
+   Not seen: a feature between an accepted step's samples (a light needs
+   its warp, an occluder its breakpoints; constants and callbacks may see
+   it apart). Munoz's, Gonterman's controllers (eq. 12, 3.4) unverified.
 
    ==========================================================================
    IMPORTANCE SAMPLING (options.warp; Munoz 2014 s.5)
@@ -1528,7 +1528,7 @@ typedef struct hrm__ctx {
     hrm_stats stats;
     hrm_warp_kind warp;    /* the warp in use, after fallbacks */
     hrm_real w_sigma;      /* distance */
-    hrm_real w_D, w_ra;    /* equiangular: D, distance from the light to t0 */
+    hrm_real w_D, w_ra, w_rb; /* equiangular: D, distance from the light to t0, t1 (0: inf) */
     hrm_real w_cos_a, w_sin_a, w_cos_b, w_sin_b, w_ub; /* cos, sin of u(t0),
                               u(t1); u(t1) itself (pi/2 for t1 = inf) */
     const hrm_warp *uw;    /* user */
@@ -1970,7 +1970,9 @@ static HRM_DEVICE HRM__CALL void hrm__stream_to(hrm__ctx *c, hrm_real x, int sid
     hrm__stream *S = &c->sm;
     hrm_real st[HRM__CH], last;
     long k, j;
-    if (S->n == 0 && x > S->start) {
+    /* (a first node within rounding of the piece's start is its start:
+       both are sampled 64 ulps inside, at one t) */
+    if (S->n == 0 && x - S->start > 4 * HRM__EPS * HRM_FABS(x)) {
         hrm__sigma_t_at(c, S->start, 1, st);
         hrm__stream_push(S, S->start, st);
     }
@@ -2526,11 +2528,16 @@ static HRM_DEVICE HRM__CALL void hrm__map(hrm__ctx *c, hrm_real p, hrm_real *off
         /* cos p from the nearer end's exact cos and sin, moving away from
            +-pi/2, where cos p is small and a plain cos(p) imprecise. */
         hrm_real d = p - c->w_ua, e = c->w_ub - p, cp;
-        if (d <= e)
+        if (d <= e) {
             cp = c->w_cos_a * HRM_COS(d) - c->w_sin_a * HRM_SIN(d);
-        else
+            o = c->w_ra * HRM_SIN(d) / cp; /* D / cos(pa) = distance to t0 */
+        } else {
+            /* the offset from t1's too (D / cos(pb) = distance to t1): sin d
+               near pi carries eps pi of d, eps pi r / D of T at the end (D =
+               1e-12 T: 1e-4 T) */
             cp = c->w_cos_b * HRM_COS(e) + c->w_sin_b * HRM_SIN(e);
-        o = c->w_ra * HRM_SIN(d) / cp; /* D / cos(pa) = distance to t0 */
+            o = c->w_rb > 0 ? c->T - c->w_rb * HRM_SIN(e) / cp : c->w_ra * HRM_SIN(d) / cp;
+        }
         j = c->w_D / (cp * cp);
         break;
     }
@@ -2781,6 +2788,7 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_wa
         c->w_cos_a = D / c->w_ra;
         c->w_sin_a = da / c->w_ra;
         c->pa = c->w_ua = HRM_ATAN2(da, D);
+        c->w_rb = 0;
         if (inf) {
             c->w_cos_b = 0;
             c->w_sin_b = 1;
@@ -2793,7 +2801,7 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_wa
             if (!(c->pb - c->pa > HRM_SQRT(HRM__EPS) * (HRM_FABS(c->pa) + HRM_FABS(c->pb))))
                 c->warp = HRM_WARP_NONE;
         } else {
-            rb = HRM_HYPOT(db, D);
+            c->w_rb = rb = HRM_HYPOT(db, D);
             c->w_cos_b = D / rb;
             c->w_sin_b = db / rb;
             c->pb = c->w_ub = HRM_ATAN2(db, D);
@@ -4237,6 +4245,42 @@ static HRM_DEVICE HRM__CALL void hrm__medium_miss(const hrm__ctx *c, const hrm__
     }
 }
 
+/* A step many optical depths thick: Tr falls by exp(-d) over it, which
+   no polynomial through the nodes follows, and the embedded estimate,
+   the difference of two such rules, stops measuring either (Bogacki-
+   Shampine, rtol 0.1, a step of d = 6.4 where Tr starts at 1: its value
+   53% high, the estimate 27%, HRM_OK). The rule applied to the
+   homogeneous medium of the same d (the medium check's yardstick, its
+   exact integral 1 - exp(-d)) gives its relative miss of the exponential;
+   times the step's value it is the step's miss where the source per
+   extinction is flat (em, where larger). Only where d > 1 and ds/dp
+   varies by less than 2 over the step: under a light's warp S ds/dp is
+   flat where ds/dp is not, and the homogeneous medium's miss is no
+   measure. */
+static HRM_DEVICE HRM__CALL void hrm__rk_exp_miss(const hrm__nodes_info *ni, const hrm__pt *const *qs, int endj,
+                                                  hrm_real h, const hrm_real (*f)[HRM__CH], hrm_real em[HRM__CH])
+{
+    int i, j;
+    hrm_real jmin = qs[0]->J, jmax = qs[0]->J, doff = qs[endj]->off - qs[0]->off;
+    for (j = 1; j < ni->m; ++j) {
+        jmin = qs[j]->J < jmin ? qs[j]->J : jmin;
+        jmax = qs[j]->J > jmax ? qs[j]->J : jmax;
+    }
+    if (!(jmin > 0 && jmax <= 2 * jmin && doff > 0)) return;
+    for (i = 0; i < HRM__CH; ++i) {
+        hrm_real d = qs[endj]->tau[i] - qs[0]->tau[i], sbar = d / doff, M0 = 0, Q = 0, e;
+        if (!(d > 1) || !HRM__FINITE(d)) continue;
+        for (j = 0; j < ni->m; ++j) {
+            M0 += ni->bw[j] * sbar * qs[j]->J * HRM_EXP(-sbar * (qs[j]->off - qs[0]->off));
+            Q += ni->bw[j] * f[j][i];
+        }
+        M0 *= h;
+        if (!(M0 > 0)) continue;
+        e = HRM_FABS(M0 + HRM_EXPM1(-d)) / M0 * HRM_FABS(h * Q);
+        if (e > em[i]) em[i] = e;
+    }
+}
+
 /* The quadrature form of a step (see hrm__nodes_info): the distinct nodes
    in ascending order, L' = Tr S at each, no stage sums. */
 static HRM_DEVICE HRM__CALL int hrm__rk_quad(hrm__ctx *c, const hrm__nodes_info *ni, const hrm__pt *start,
@@ -4264,6 +4308,7 @@ static HRM_DEVICE HRM__CALL int hrm__rk_quad(hrm__ctx *c, const hrm__nodes_info 
     HRM_ASSERT(!(err && c->mcheck) || endj >= 0); /* every pair has a node at c = 1 */
     if (err && c->mcheck && endj >= 0)
         hrm__medium_miss(c, qs, ni->bw, ni->m, h, start->tau, pn[endj].tau, start->off, pn[endj].off, em);
+    if (err && !c->expo && endj >= 0 && ni->c[0] == 0) hrm__rk_exp_miss(ni, qs, endj, h, (const hrm_real(*)[HRM__CH])f, em);
     if (c->expo) {
         /* the nodes' polynomial against the exact local exponential; the
            embedded estimates are those of the fitted values g (what is
@@ -5076,6 +5121,36 @@ static HRM_DEVICE hrm_real hrm__gk_check_miss(const hrm__ctx *c, const hrm__gk_p
     return HRM_FABS(io->gqc[ch] - p_at) * att * 2 * HRM_FABS(hl) / (hrm_real)N;
 }
 
+/* What the nodes miss of the warp itself: the rule applied to ds/dp
+   against the interval's length in s. A warp whose ds/dp peaks at an end
+   within the gap to the first node (the equiangular warp's D / cos^2 p,
+   1e-12 T wide at D = 1e-12 T) puts the light of a whole side of the ray
+   there, and K and G agree on the little the nodes see (K7 and K15, light
+   0.4 T from t0: L 52% low with HRM_OK; nested Simpson and the pairs
+   sample the ends). Returns that miss in s beyond round-off (the
+   offsets' and the rule's), 0 under no
+   warp or the distance warp (whose ds/dp peaks where Tr has fallen with
+   it); *je: the node nearest the end where ds/dp is larger, whose S Tr
+   weighs the miss. (pt not const: g++ under nvcc took a const pointer
+   to the caller's array for a read before its nodes were filled.) */
+static HRM_DEVICE HRM__CALL hrm_real hrm__gk_warp_miss(hrm__ctx *c, const hrm__gk_pair *R, hrm__pt *pt,
+                                   hrm_real a, hrm_real b, int *je)
+{
+    hrm_real oa, ob, J, rj = 0, rabs = 0, hl = (b - a) / 2, fl;
+    int j, N = R->n;
+    *je = pt[0].J >= pt[N - 1].J ? 0 : N - 1;
+    if (c->warp != HRM_WARP_EQUIANGULAR && c->warp != HRM_WARP_USER) return 0;
+    hrm__map(c, a, &oa, &J);
+    hrm__map(c, b, &ob, &J);
+    for (j = 0; j < N; ++j) {
+        rj += R->wk[j] * pt[j].J;
+        rabs += HRM_FABS(R->wk[j]) * pt[j].J;
+    }
+    fl = HRM__EPS * (4 * (HRM_FABS(oa) + HRM_FABS(ob)) + 50 * rabs * HRM_FABS(hl));
+    fl = HRM_FABS(rj * hl - (ob - oa)) - fl;
+    return fl > 0 ? fl : 0;
+}
+
 /* The Kronrod rule (c->gk) over [a, b] of y = (tau, L) given tau at a
    (tau_a; ignored when Tr at the nodes is known). K receives the
    increments; ek |K - G| (Munoz's estimate, G's error), at least 50
@@ -5090,10 +5165,12 @@ static HRM_DEVICE HRM__CALL void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, co
     hrm__pt pt[15];
     hrm_real hl = (b - a) / 2, mid = (a + b) / 2, off_a = 0, off_b = 0, J, lw[15], big = -1;
     hrm_real eK[HRM__CH], eG[HRM__CH], uK[HRM__CH], uG[HRM__CH], ta_at[HRM__CH];
-    int j, l, n, N = R->n, chk = io->hc && (io->xc - a) * (io->xc - b) < 0, ta_known = 0;
+    hrm_real wmiss;
+    int j, l, n, N = R->n, chk = io->hc && (io->xc - a) * (io->xc - b) < 0, ta_known = 0, je;
 
     for (j = 0; j < N; ++j) hrm__eval(c, 2 * j + 1 == N ? mid : mid + hl * R->x[j], &pt[j]);
     hrm__fill(io->M, HRM__CH, 0);
+    wmiss = hrm__gk_warp_miss(c, R, pt, a, b, &je);
     if (c->mcheck) {
         /* the nodes against the layer's tau at the interval's ends */
         const hrm__pt *nodes[15];
@@ -5187,6 +5264,22 @@ static HRM_DEVICE HRM__CALL void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, co
         rabs *= HRM_FABS(hl);
         if (ek[n] < 50 * HRM__EPS * rabs) ek[n] = 50 * HRM__EPS * rabs;
         ek[n] += eend;
+        /* the warp's miss at the nodes' S Tr there, where it is larger */
+        if (!is_tau && wmiss > 0 && pt[je].J > 0 && HRM_FABS(f[je]) / pt[je].J * wmiss > ek[n])
+            ek[n] = HRM_FABS(f[je]) / pt[je].J * wmiss;
+        /* the round-off of the nodes' abscissae, eps |p| each, which moves
+           tau by its slope in p times that: where a warp packs many optical
+           depths into a stretch of p far from 0 (the equiangular warp near
+           -pi/2, a light 1e-4 T off, sigma_t T 1e6: 10 optical depths in
+           6e-9 of p), L's round-off, which no estimate of the rule sees (K7
+           at rtol 1e-8: 7.5e-8 off, its estimates 5e-9, HRM_OK); kept
+           apart from |K - G|, which the callers scale by the rate splits
+           show, as the medium's miss is */
+        if (!is_tau && !c->coupled && pt[N - 1].p > pt[0].p) {
+            hrm_real r = rabs * HRM__EPS * (HRM_FABS(a) > HRM_FABS(b) ? HRM_FABS(a) : HRM_FABS(b)) *
+                         (pt[N - 1].tau[ch] - pt[0].tau[ch]) / (pt[N - 1].p - pt[0].p);
+            if (r > io->M[ch]) io->M[ch] = r;
+        }
         if (chk && !is_tau) {
             hrm_real mis = hrm__gk_check_miss(c, R, pt, f, hl, lw, io, ch);
             if (mis > ek[n]) {
