@@ -5134,14 +5134,12 @@ static HRM_DEVICE hrm_real hrm__gk_check_miss(const hrm__ctx *c, const hrm__gk_p
    weighs the miss. (pt not const: g++ under nvcc took a const pointer
    to the caller's array for a read before its nodes were filled.) */
 static HRM_DEVICE HRM__CALL hrm_real hrm__gk_warp_miss(hrm__ctx *c, const hrm__gk_pair *R, hrm__pt *pt,
-                                   hrm_real a, hrm_real b, int *je)
+                                   hrm_real a, hrm_real b, hrm_real oa, hrm_real ob, int *je)
 {
-    hrm_real oa, ob, J, rj = 0, rabs = 0, hl = (b - a) / 2, fl;
+    hrm_real rj = 0, rabs = 0, hl = (b - a) / 2, fl;
     int j, N = R->n;
     *je = pt[0].J >= pt[N - 1].J ? 0 : N - 1;
     if (c->warp != HRM_WARP_EQUIANGULAR && c->warp != HRM_WARP_USER) return 0;
-    hrm__map(c, a, &oa, &J);
-    hrm__map(c, b, &ob, &J);
     for (j = 0; j < N; ++j) {
         rj += R->wk[j] * pt[j].J;
         rabs += HRM_FABS(R->wk[j]) * pt[j].J;
@@ -5170,17 +5168,18 @@ static HRM_DEVICE HRM__CALL void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, co
 
     for (j = 0; j < N; ++j) hrm__eval(c, 2 * j + 1 == N ? mid : mid + hl * R->x[j], &pt[j]);
     hrm__fill(io->M, HRM__CH, 0);
-    wmiss = hrm__gk_warp_miss(c, R, pt, a, b, &je);
+    /* the ends' offsets, mapped once for every use below */
+    hrm__map(c, a, &off_a, &J);
+    hrm__map(c, b, &off_b, &J);
+    wmiss = hrm__gk_warp_miss(c, R, pt, a, b, off_a, off_b, &je);
     if (c->mcheck) {
         /* the nodes against the layer's tau at the interval's ends */
         const hrm__pt *nodes[15];
-        hrm_real tea[HRM__CH], teb[HRM__CH], oa, ob;
-        hrm__map(c, a, &oa, &J);
-        hrm__tau_of(c, oa, tea);
-        hrm__map(c, b, &ob, &J);
-        hrm__tau_of(c, ob, teb);
+        hrm_real tea[HRM__CH], teb[HRM__CH];
+        hrm__tau_of(c, off_a, tea);
+        hrm__tau_of(c, off_b, teb);
         for (j = 0; j < N; ++j) nodes[j] = &pt[j];
-        hrm__medium_miss(c, nodes, R->wk, N, hl, tea, teb, oa, ob, io->M);
+        hrm__medium_miss(c, nodes, R->wk, N, hl, tea, teb, off_a, off_b, io->M);
     }
     if (chk) {
         /* the Lagrange weights of the nodes at the check sample */
@@ -5203,19 +5202,13 @@ static HRM_DEVICE HRM__CALL void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, co
         }
     }
     if (c->coupled) {
-        hrm__map(c, a, &off_a, &J);
-        hrm__map(c, b, &off_b, &J);
         memcpy(ta_at, tau_a, sizeof ta_at);
         ta_known = 1;
     } else if (!c->expo || c->warp != HRM_WARP_NONE) {
         /* tau at a, where the first node is optically deep (below; a fit
            is exact there only without a warp) */
         for (n = 0; n < HRM__CH; ++n) ta_known |= pt[0].tau[n] > 1;
-        if (ta_known) {
-            hrm_real off;
-            hrm__map(c, a, &off, &J);
-            hrm__tau_of(c, off, ta_at);
-        }
+        if (ta_known) hrm__tau_of(c, off_a, ta_at);
     }
     if (c->expo) {
         /* K and G against the exact local exponential */
