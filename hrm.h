@@ -4445,7 +4445,10 @@ static HRM_DEVICE HRM__CALL int hrm__rk_step(hrm__ctx *c, const hrm__tableau *tb
         for (n = 0; n < HRM__CH; ++n) {
             if (err) ynew[n] += c->sbar[n] * (off_end - start->off);
             else hrm__sum(&ynew[n], &c->ksum[n], c->sbar[n] * (off_end - start->off));
-            if (ynew[n] < y[n]) ynew[n] = y[n];
+            if (ynew[n] < y[n]) { /* tau nondecreasing; the sum's lost part with it */
+                ynew[n] = y[n];
+                if (!err) c->ksum[n] = 0;
+            }
         }
     }
     if (end_stage >= 0) *end = pts[end_stage];
@@ -4516,7 +4519,10 @@ static HRM_DEVICE HRM__CALL void hrm__ivp_fixed(hrm__ctx *c, const hrm__tableau 
                 hrm__map(c, q, &off_q, &J);
                 for (i = 0; i < HRM__CH; ++i) {
                     hrm__sum(&y[i], &c->ksum[i], c->sbar[i] * (off_q - start.off));
-                    if (y[i] < tau_p[i]) y[i] = tau_p[i];
+                    if (y[i] < tau_p[i]) { /* the sum's lost part with it */
+                        y[i] = tau_p[i];
+                        c->ksum[i] = 0;
+                    }
                 }
             }
         }
