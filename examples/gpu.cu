@@ -37,7 +37,8 @@
    (std::thread), the stack set and each method's least stack; writes
    OUT/gpu.png (each method's GPU image and the false-colour difference
    to the CPU's). Usage: gpu [--out DIR] [--size W H] [--stack KiB]
-   [--cpu-only] (the CPU's half alone, no CUDA call). */
+   [--no-workspace] (each solve's storage on the GPU stack) [--cpu-only]
+   (the CPU's half alone, no CUDA call). */
 #define HRM_IMPLEMENTATION
 #include "hrm.h"
 #include "png.h"
@@ -52,7 +53,9 @@
 #include <thread>
 #include <vector>
 
-#define PROBE_STACK_KIB 64 /* the stack of the probes' reference image */
+/* the stack of the probes' reference image: with a workspace, and
+   without (nested Simpson's and Gauss-Kronrod's storage on the stack) */
+#define PROBE_STACK_KIB(s) ((s).workspace ? 64 : 192)
 
 struct scene {
     double light[3], I; /* point light: position, intensity */
@@ -63,6 +66,7 @@ struct scene {
     double wall_z, bg;  /* the wall behind and its radiance */
     double fov_tan;     /* tan of half the vertical field of view */
     int w, h;
+    int workspace;      /* 1: each thread a workspace; 0: none (the stack) */
 };
 
 struct method_cfg {
@@ -157,7 +161,7 @@ static HRM_DEVICE hrm_status solve_pixel(const scene *s, const method_cfg *m, lo
     if (m->steps > 0) opt.steps = m->steps;
     if (m->rtol > 0) opt.rtol = (hrm_real)m->rtol;
     if (hrm_equiangular_warp(o, d, light, &opt.warp) != HRM_OK) opt.warp.kind = HRM_WARP_NONE;
-    opt.workspace = ws;
+    opt.workspace = ws_bytes > 0 ? ws : NULL;
     opt.workspace_size = ws_bytes;
     st = hrm_solve(&fog, 0, (hrm_real)(s->wall_z / r.d[2]), &opt, &res);
     for (i = 0; i < HRM_CHANNELS; ++i) rgb[i] = res.L[i] + res.Tr[i] * (hrm_real)s->bg;
@@ -184,14 +188,14 @@ struct image {
     double seconds;
 };
 
-static size_t ws_size(const method_cfg *m)
+static size_t ws_size(const scene &s, const method_cfg *m)
 {
     hrm_options opt = hrm_default_options(m->method);
     if (m->steps > 0) opt.steps = m->steps;
     if (m->rtol > 0) opt.rtol = (hrm_real)m->rtol;
     opt.warp.kind = HRM_WARP_EQUIANGULAR;
     opt.warp.D = 1;
-    return hrm_workspace_size(&opt);
+    return s.workspace ? hrm_workspace_size(&opt) : 0;
 }
 
 static int cuda_ok(cudaError_t e, const char *what)
@@ -206,7 +210,7 @@ static int cuda_ok(cudaError_t e, const char *what)
 static int render_gpu(const scene &s, const method_cfg &m, int stack_kib, image *out, size_t *ws_total)
 {
     long npix = (long)s.w * s.h;
-    size_t wsb = ws_size(&m), total;
+    size_t wsb = ws_size(s, &m), total;
     int dev = 0, sms = 0, per_sm = 0, block = 128, grid, k;
     unsigned char *ws = NULL;
     hrm_real *img = NULL;
@@ -257,7 +261,7 @@ static void render_cpu(const scene &s, const method_cfg &m, image *out)
 {
     long npix = (long)s.w * s.h;
     unsigned nt = std::thread::hardware_concurrency(), t;
-    size_t wsb = ws_size(&m);
+    size_t wsb = ws_size(s, &m);
     std::vector<std::thread> pool;
     std::vector<unsigned char> mem((size_t)(nt ? nt : 1) * (wsb + 16) + 16);
     if (nt == 0) nt = 1;
@@ -311,7 +315,8 @@ static unsigned long long run_probe(const char *self, const scene &s, int m, int
     FILE *f;
     std::snprintf(path, sizeof path, "%s/probe.txt", dir);
     std::remove(path);
-    std::snprintf(cmd, sizeof cmd, "\"%s\" --size %d %d --probe %d %d \"%s\" 2>/dev/null", self, s.w, s.h, m, kib, path);
+    std::snprintf(cmd, sizeof cmd, "\"%s\" --size %d %d%s --probe %d %d \"%s\" 2>/dev/null", self, s.w, s.h,
+                  s.workspace ? "" : " --no-workspace", m, kib, path);
     if (std::system(cmd) == -1) return 0;
     if (!(f = std::fopen(path, "r"))) return 0;
     if (std::fscanf(f, "%15s %llu", word, &h) != 2 || std::strcmp(word, "ok") != 0) h = 0;
@@ -324,8 +329,8 @@ static unsigned long long run_probe(const char *self, const scene &s, int m, int
    sufficient. -1 if even PROBE_STACK_KIB fails. */
 static int least_stack(const char *self, const scene &s, int m, const char *dir)
 {
-    unsigned long long ref = run_probe(self, s, m, PROBE_STACK_KIB, dir);
-    int lo = 0, hi = PROBE_STACK_KIB; /* lo fails (or is 0), hi renders the reference */
+    unsigned long long ref = run_probe(self, s, m, PROBE_STACK_KIB(s), dir);
+    int lo = 0, hi = PROBE_STACK_KIB(s); /* lo fails (or is 0), hi renders the reference */
     if (ref == 0) return -1;
     while (hi - lo > 1) {
         int mid = (lo + hi) / 2;
@@ -365,7 +370,7 @@ static int cpu_report(const scene &s)
         }
         fail |= err > 0;
         std::printf("%-20s %8.3f Mray/s %8.1f evals/ray, workspace %6zu bytes, mean pixel %.6f, %ld warnings, %ld errors\n",
-                    methods[m].label, npix / c.seconds * 1e-6, (double)ev / npix, ws_size(&methods[m]), sum / npix,
+                    methods[m].label, npix / c.seconds * 1e-6, (double)ev / npix, ws_size(s, &methods[m]), sum / npix,
                     warn, err);
     }
     return fail;
@@ -373,7 +378,7 @@ static int cpu_report(const scene &s)
 
 int main(int argc, char **argv)
 {
-    scene s = {{0.4, 0.5, 4.0}, 20.0, {0}, 0.35, 0.8, {0}, 8.0, 0.05, 0.6, 1024, 1024};
+    scene s = {{0.4, 0.5, 4.0}, 20.0, {0}, 0.35, 0.8, {0}, 8.0, 0.05, 0.6, 1024, 1024, 1};
     const char *outdir = "build/gpu", *self = argv[0];
     int stack = -1, least[NMETHODS], fail = 0, ndev = 0, cpu_only = 0, i, m;
     double fixed_bound = sizeof(hrm_real) == sizeof(float) ? 5e-4 : 1e-12;
@@ -393,10 +398,11 @@ int main(int argc, char **argv)
             s.h = std::atoi(argv[++i]);
         } else if (!std::strcmp(argv[i], "--stack") && i + 1 < argc) stack = std::atoi(argv[++i]);
         else if (!std::strcmp(argv[i], "--cpu-only")) cpu_only = 1;
+        else if (!std::strcmp(argv[i], "--no-workspace")) s.workspace = 0;
         else if (!std::strcmp(argv[i], "--probe") && i + 3 < argc)
             return probe(s, std::atoi(argv[i + 1]), std::atoi(argv[i + 2]), argv[i + 3]);
         else {
-            std::fprintf(stderr, "usage: %s [--out DIR] [--size W H] [--stack KiB] [--cpu-only]\n", argv[0]);
+            std::fprintf(stderr, "usage: %s [--out DIR] [--size W H] [--stack KiB] [--no-workspace] [--cpu-only]\n", argv[0]);
             return 2;
         }
     }
@@ -426,7 +432,7 @@ int main(int argc, char **argv)
         for (m = 0; m < NMETHODS; ++m) {
             least[m] = least_stack(self, s, m, outdir);
             if (least[m] < 0) {
-                std::printf("stack: %-20s fails even at %d KiB\n", methods[m].label, PROBE_STACK_KIB);
+                std::printf("stack: %-20s fails even at %d KiB\n", methods[m].label, PROBE_STACK_KIB(s));
                 fail = 1;
                 continue;
             }
