@@ -2038,15 +2038,28 @@ static HRM_DEVICE HRM__CALL void hrm__cheb_fit(const hrm_real f[HRM__CHEB + 1], 
 {
     hrm_real sum = 0, alt = 0;
     int j, k, step = HRM__CHEB / n;
-    for (k = 0; k <= n; ++k) {
-        hrm_real acc;
-        const hrm_real *T = hrm__cheb_T[k];
-        /* the DCT-I: T_k at the degree-n points are row k, every
-           step-th column, the ends halved */
-        acc = (f[0] * T[0] + f[HRM__CHEB] * T[HRM__CHEB]) / 2;
-        for (j = step; j < HRM__CHEB; j += step) acc += f[j] * T[j];
-        acc *= (hrm_real)2 / (hrm_real)n;
-        d[k] = (k == 0 || k == n) ? acc / 2 : acc;
+    /* the DCT-I: T_k at the degree-n points are row k, every step-th
+       column, the ends halved; four rows at a time, their sums
+       independent chains (rows past n repeat row n, unused) */
+    for (k = 0; k <= n; k += 4) {
+        const hrm_real *T0 = hrm__cheb_T[k], *T1 = hrm__cheb_T[k + 1 <= n ? k + 1 : n],
+                       *T2 = hrm__cheb_T[k + 2 <= n ? k + 2 : n], *T3 = hrm__cheb_T[k + 3 <= n ? k + 3 : n];
+        hrm_real acc[4];
+        int q;
+        acc[0] = (f[0] * T0[0] + f[HRM__CHEB] * T0[HRM__CHEB]) / 2;
+        acc[1] = (f[0] * T1[0] + f[HRM__CHEB] * T1[HRM__CHEB]) / 2;
+        acc[2] = (f[0] * T2[0] + f[HRM__CHEB] * T2[HRM__CHEB]) / 2;
+        acc[3] = (f[0] * T3[0] + f[HRM__CHEB] * T3[HRM__CHEB]) / 2;
+        for (j = step; j < HRM__CHEB; j += step) {
+            acc[0] += f[j] * T0[j];
+            acc[1] += f[j] * T1[j];
+            acc[2] += f[j] * T2[j];
+            acc[3] += f[j] * T3[j];
+        }
+        for (q = 0; q < 4 && k + q <= n; ++q) {
+            hrm_real a = acc[q] * ((hrm_real)2 / (hrm_real)n);
+            d[k + q] = (k + q == 0 || k + q == n) ? a / 2 : a;
+        }
     }
     d[n + 1] = d[n + 2] = 0;
     /* the integral of T_0 is T_1, of T_1 is T_2 / 4, of T_k is
