@@ -2365,7 +2365,7 @@ static HRM_DEVICE HRM__CALL void hrm__tau_march(hrm__ctx *c, hrm__tau *L, hrm__t
 {
     hrm_real f[HRM__CH][HRM__CHEB + 1], dtau[HRM__CH];
     hrm_real a = 0, tau_a[HRM__CH], h, res;
-    int i, n, k;
+    int i, n, k, failed = 0;
     long id = L->count;
 
     if (id == 0) {
@@ -2389,12 +2389,18 @@ static HRM_DEVICE HRM__CALL void hrm__tau_march(hrm__ctx *c, hrm__tau *L, hrm__t
         /* past a breakpoint sigma_t may jump: its value on this side */
         if (hrm__is_break(c, a)) hrm__sigma_t_at(c, a, 1, L->sig_b);
     }
-    /* No panel is shorter than what t resolves near it. */
+    /* res: what t resolves near a. A trial below it is fitted at its own
+       length: sigma_t there is what t resolves, which a constant fits,
+       and the panel's tau keeps eps of its own increment (a panel of res
+       carries eps of all of its increment, 1e6 on a ray 8 ulps long at
+       1e9, to tau near t0: L 1.6e-11 off a constant's). The panels it
+       starts at least double; where it fails the panel is res long,
+       accepted whatever its error. */
     res = 64 * HRM__EPS * (HRM_FABS(c->t0) + a) +
           HRM__TINY;
     for (;;) {
         hrm_real b, worst, fac;
-        int floor = h <= res; /* the last try: accepted whatever its error */
+        int small = h < res && !failed, floor = !small && h <= res; /* floor: the last try */
         if (floor) h = res;
         b = a + h;
         if (b > L->end || L->end - b < h / 8) b = L->end; /* no sliver */
@@ -2429,6 +2435,7 @@ static HRM_DEVICE HRM__CALL void hrm__tau_march(hrm__ctx *c, hrm__tau *L, hrm__t
             co->id = id;
             L->count = id + 1;
             L->next_h = (b - a) * (fac < HRM__R(0.5) ? HRM__R(0.5) : fac > 4 ? 4 : fac);
+            if (small && L->next_h < 2 * (b - a)) L->next_h = 2 * (b - a);
             hrm__tau_drop(L, b); /* rejected panels' samples behind the march */
             for (i = 0; i < L->nmem && L->mem_keep[i]; ++i) {}
             if (i == L->nmem && id + 1 >= (L->ncp ? L->cp[L->ncp - 1].id : 0) + L->cp_every)
@@ -2436,6 +2443,7 @@ static HRM_DEVICE HRM__CALL void hrm__tau_march(hrm__ctx *c, hrm__tau *L, hrm__t
             return;
         }
         hrm__tau_remember(L, a, b, n, f);
+        failed |= small;
         h = (b - a) * (fac < HRM__R(0.125) ? HRM__R(0.125) : fac > HRM__R(0.5) ? HRM__R(0.5) : fac);
     }
 }

@@ -446,6 +446,42 @@ static void xg_accuracy(xg_tally *t, const xg_case *k, const xg_scene *s, const 
     }
 }
 
+/* The peak's staircase (promise 8). Li is called at s, t0 + off rounded
+   to hrm_real, up to r = eps/2 |s| from the node's own offset, where Tr
+   and dt/du are taken: the rules integrate Li as a staircase in t, its
+   steps an ulp apart. ln Li = -ln(D^2 + u^2) + const (u = t - delta)
+   moves by at most r g over r, g the largest |d ln Li / dt| = 2|u| / (u^2
+   + D^2) over the abscissae both paths sampled, widened by r (1/D where
+   they reach |u| = D): each sample of sigma_s Li lies within a factor
+   exp(+-r g) of the smooth integrand's, and a path's L within rho =
+   expm1(r g) times sum |w_i| f_i of its rule on the smooth integrand.
+   That sum is L for positive weights, at most 1.65 L for Dormand-Prince's
+   b (sum |b| = 1.65 sum b) where a step's samples are alike: 2 rho L a
+   path. The paths' round-off (tau from the layer or the closed form)
+   moves where nodes and steps' ends fall on the staircase, and the
+   adaptive methods' steps follow it past their estimates. t0 1e9, T 1,
+   D 1e-4 T, rtol 1e-14: the constants' sigma_t one ulp up or down moves
+   their L by up to 4e-5 of itself, by 4.7e-7 in a channel whose two
+   estimates add up to 4e-7 (Dormand-Prince, equiangular, the budget
+   spent: rho 1.1e-3); sigma_ref one ulp up, by 2.6e-9, the estimates
+   1.5e-13 (Bogacki-Shampine, distance warp: rho 5.5e-7). Counted where
+   either path warned; HRM_OK says each estimate met the tolerance on the
+   samples both paths share, the staircase's. Not finite (r g past 709):
+   a peak narrower than t resolves (D 1e-12 at 1e9, where an ulp of t is
+   1.2e-7), no bound. */
+static double xg_stair(const xg_scene *a, const xg_scene *b)
+{
+    double lo = a->tmin < b->tmin ? a->tmin : b->tmin, hi = a->tmax > b->tmax ? a->tmax : b->tmax;
+    double r = real_eps() / 2 * (fabs(lo) > fabs(hi) ? fabs(lo) : fabs(hi)), D = a->D;
+    double u1 = lo - r - a->delta, u2 = hi + r - a->delta, g1, g2;
+    if (!(lo <= hi)) return 0; /* nothing sampled */
+    if ((u1 <= D && u2 >= D) || (u1 <= -D && u2 >= -D)) return expm1(r / D);
+    /* |u| below D throughout, or above it: g is monotone in |u| */
+    g1 = 2 * fabs(u1) / (u1 * u1 + D * D);
+    g2 = 2 * fabs(u2) / (u2 * u2 + D * D);
+    return expm1(r * (g1 > g2 ? g1 : g2));
+}
+
 /* 8. "A constant sigma_t given through callbacks therefore gives the L and
    Tr of the same medium flagged HRM_MEDIUM_HOMOGENEOUS, to round-off,
    under every warp and for every method" (TRANSMITTANCE). The case solved
@@ -454,13 +490,17 @@ static void xg_accuracy(xg_tally *t, const xg_case *k, const xg_scene *s, const 
    the miss) a warning. L within round-off fp_floor(evals, min(tau, 40))
    plus tau_tol (the layer), plus for the adaptive methods both error
    estimates and 2 rtol (a decision at the threshold may fall either way
-   on round-off); Tr as in 7. */
-static void xg_paths(xg_tally *t, const xg_case *k, const hrm_result *r, hrm_status st, double rtol_eff)
+   on round-off), plus for the peak where either path warned xg_stair's
+   share of both L; Tr as in 7. */
+static void xg_paths(xg_tally *t, const xg_case *k, const xg_scene *s, const hrm_result *r, hrm_status st,
+                     double rtol_eff)
 {
     xg_scene s2;
     hrm_result r2;
     hrm_status st2 = xg_solve(k, 0, &s2, &r2);
     const int tan = k->warp == XW_EQUIANGULAR || (k->warp == XW_USER && s2.user == XU_TAN);
+    const int warned = (st != HRM_OK && st != HRM_WARN_RTOL_CLIPPED) || (st2 != HRM_OK && st2 != HRM_WARN_RTOL_CLIPPED);
+    const double rho = k->light == XL_PEAK && warned ? xg_stair(s, &s2) : 0;
     int c;
     /* (not at h_min on a peak narrower than the smallest step: no
        estimate of a step sees what lies between its nodes, and the two
@@ -470,17 +510,30 @@ static void xg_paths(xg_tally *t, const xg_case *k, const hrm_result *r, hrm_sta
        its breakpoints, a peak 1e-12 T wide without the light's warp; the
        two paths' estimates differ (the layer's checks), so do their
        steps, and each sees another slice of it: Dormand-Prince, D 1e-12,
-       no warp, L 2.3e6 and 3.2e6 for 2.5e12, both with warnings) */
+       no warp, L 2.3e6 and 3.2e6 for 2.5e12, both with warnings. Nor
+       where a budget ran out (MAX_EVALS) on a peak narrower than 1/64 of
+       the ray without the light's warp: the rest of the ray is then
+       crossed unchecked, a pair's in its last 64 steps (hrm.h,
+       hrm__ivp_adaptive), up to 1/64 of the ray each, whose nodes the
+       peak can lie between; Bogacki-Shampine, t0 1e9, T 1e9, D 1e-4 T,
+       rtol 1e-14: forced steps of 0.0125 in u over a peak 1e-4 wide in
+       u, L 1.4e-15 (none on it) and 4.2e-14 (a stage on it), both
+       estimates near 1e-15. Nor, with a warning, where the peak is
+       narrower than t resolves near it: xg_stair not finite) */
     if (k->form == HRM_FORM_RTE || st < 0 || st2 < 0 || (xg_fixed(k->method) && (st || st2)) ||
         ((st == HRM_WARN_H_MIN || st2 == HRM_WARN_H_MIN) && k->light == XL_PEAK && s2.D < 1e-6 * s2.Teff) ||
         (!xg_fixed(k->method) && ((k->light == XL_SHADOW && !k->breaks) ||
-                                  (k->light == XL_PEAK && !tan && s2.D < 1e-6 * s2.Teff))))
+                                  (k->light == XL_PEAK && !tan && s2.D < 1e-6 * s2.Teff))) ||
+        (!xg_fixed(k->method) && k->light == XL_PEAK && !tan && s2.D < s2.Teff / 64 &&
+         (st == HRM_WARN_MAX_EVALS || st2 == HRM_WARN_MAX_EVALS)) ||
+        !finite_d(rho))
         return;
     for (c = 0; c < NCH; ++c) {
         double a = (double)r->L[c], b = (double)r2.L[c], tau = ((double)s2.sa[c] + (double)s2.ss[c]) * s2.Teff;
         double tol = (fp_floor(r->stats.evals, tau < 40 ? tau : 40) + xg_tau_tol(k, rtol_eff)) * fabs(b);
         if (!finite_d(a) || !finite_d(b)) return; /* counted in 2 */
         if (!xg_fixed(k->method)) tol += (double)r->error[c] + (double)r2.error[c] + 2 * rtol_eff * fabs(b);
+        tol += 2 * rho * (fabs(a) + fabs(b));
         if (!(fabs(a - b) <= tol + xg_tr_slack(k))) {
             xg_fail(t, XP_PATHS, k, st, r, "L with callbacks, with constants", a, b);
             return;
@@ -641,7 +694,7 @@ static void xg_check(xg_tally *t, const xg_case *k)
                 (double)(s.n_sa + s.n_ss));
 
     if (!missed) xg_accuracy(t, k, &s, &r, st, rtol_eff);
-    if (k->callbacks) xg_paths(t, k, &r, st, rtol_eff);
+    if (k->callbacks) xg_paths(t, k, &s, &r, st, rtol_eff);
 }
 
 /* The product's index, decoded: the cheap hash keeps one in XG_KEEP; what
