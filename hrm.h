@@ -994,11 +994,11 @@ HRM_API HRM_DEVICE int hrm_version(void);
 /* On a GPU the large functions stay calls: inlined whole into a kernel,
    they take ptxas minutes per kernel and registers from every thread.
    The small ones on an evaluation's path (the sigma callbacks' wrapper,
-   the warp's map, the memo, the Chebyshev sum) are left to the compiler:
-   each call saves and restores its registers in local memory, and a
-   kernel spends most of its time waiting on local memory (H100, nested
-   Simpson: 77% of its stall cycles; these five inlined, 6-9% more rays a
-   second, examples/gpu.cu). */
+   the warp's map, the memo, the medium step, the Chebyshev sum) are left
+   to the compiler: each call saves and restores its registers in local
+   memory, and a kernel spends most of its time waiting on local memory
+   (H100, nested Simpson: 77% of its stall cycles; these five inlined,
+   6-9% more rays a second, examples/gpu.cu). */
 #if defined(__CUDACC__) || defined(__HIPCC__)
 #define HRM__CALL __noinline__
 #else
@@ -4226,9 +4226,10 @@ static HRM_DEVICE hrm_real hrm__newton_top(const hrm__nodes_info *ni, hrm_real *
    (fBm smoke under a spot light, nested Simpson at rtol 1e-3: a pixel
    7 rtol off with HRM_OK where the ratio of the rules weighed it); where
    the rule missed half of A or more, the nodes' ratio is in doubt too
-   and the largest S / sigma_t seen so far bounds it; none seen yet (every node where sigma is 0), the source is taken
-   as 1 per unit extinction, so that the interval is refined until a node
-   samples the medium. With an exponential fit (expo: intervals many
+   and the largest S / sigma_t seen so far bounds it; none seen yet
+   (every node where sigma is 0), the source is taken as 1 per unit
+   extinction, so that the interval is refined until a node samples the
+   medium. With an exponential fit (expo: intervals many
    optical depths thick, where a polynomial rule of Tr cannot be exact)
    the rule is applied to sigma_t alone against tau's increment, and its
    relative miss weighs A. The rule runs in the warp's variable, where
