@@ -789,13 +789,16 @@ static void rg_li(void *user, hrm_real t, hrm_real out[NCH])
     for (c = 0; c < NCH; ++c) out[c] = 1;
 }
 
-static hrm_status rg_solve(rg_scene *s, int callbacks, hrm_options *o, hrm_result *r)
+/* The scene's medium (constants, or sigma_a and sigma_s callbacks) with
+   Li from li; user begins with the rg_scene s (the callbacks read it). */
+static hrm_status rg_solve_li(rg_scene *s, void *user, hrm_spectrum_fn li, int callbacks, hrm_options *o,
+                              hrm_result *r)
 {
     hrm_medium m;
     int c;
     memset(&m, 0, sizeof m);
-    m.user = s;
-    m.Li = rg_li;
+    m.user = user;
+    m.Li = li;
     if (callbacks) {
         m.sigma_a = rg_sa;
         m.sigma_s = rg_ss;
@@ -808,6 +811,11 @@ static hrm_status rg_solve(rg_scene *s, int callbacks, hrm_options *o, hrm_resul
     }
     s->calls = s->outside = 0;
     return hrm_solve(&m, (hrm_real)s->t0, (hrm_real)s->t1, o, r);
+}
+
+static hrm_status rg_solve(rg_scene *s, int callbacks, hrm_options *o, hrm_result *r)
+{
+    return rg_solve_li(s, s, rg_li, callbacks, o, r);
 }
 
 /* What every solve of an unresolvable ray must give: a warning (t cannot
@@ -929,25 +937,11 @@ static void rg_rte_physical(void)
     for (cb = 0; cb < 2; ++cb)
         for (mi = 0; mi < 5; ++mi) {
             rg_shadow sh = {{1e11, 0, 1e-7, 0, 0}, 0.3e-7, 0.55e-7};
-            hrm_medium m;
             hrm_options o = hrm_default_options(pairs[mi]);
             hrm_result r;
             hrm_status st;
-            memset(&m, 0, sizeof m);
-            m.user = &sh;
-            m.Li = rg_li_shadow;
-            if (cb) {
-                m.sigma_a = rg_sa;
-                m.sigma_s = rg_ss;
-            } else {
-                m.flags = HRM_MEDIUM_HOMOGENEOUS;
-                for (c = 0; c < NCH; ++c) {
-                    m.const_sigma_a[c] = (hrm_real)0.4e11;
-                    m.const_sigma_s[c] = (hrm_real)0.6e11;
-                }
-            }
             o.form = HRM_FORM_RTE;
-            st = hrm_solve(&m, 0, (hrm_real)1e-7, &o, &r);
+            st = rg_solve_li(&sh.s, &sh, rg_li_shadow, cb, &o, &r);
             if (st < 0) continue; /* HRM_ERR_RANGE: the blow-up caught (ERRORS) */
             for (c = 0; c < NCH; ++c) {
                 double L = (double)r.L[c], Tr = (double)r.Tr[c];
