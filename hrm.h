@@ -370,9 +370,9 @@
                          extinction (lowered to what u resolves).
    HRM_WARP_EQUIANGULAR  u = atan((t - delta)/D), a point light D from the
                          ray at its foot delta (Munoz eq. 16; Kulla and
-                         Fajardo 2012): hrm_equiangular_warp. D = 0 (off
-                         the ray) or a range in u below sqrt(eps): none
-                         (t1 = +INFINITY: the distance warp, ROUNDOFF).
+                         Fajardo 2012): hrm_equiangular_warp. None where
+                         D = 0 (t1 = +INFINITY: BAD_INTERVAL) or u's range
+                         < sqrt(eps) (t1 = +INFINITY: distance, ROUNDOFF).
    HRM_WARP_USER         the host's t_of_u, dt_du (>= 0) and u_of_t.
    t1 = +INFINITY: valid where the warp maps it to a finite u (no callback
    sees infinity). The RTE form turns stiff under a warp (Munoz s.6).
@@ -1919,7 +1919,7 @@ static HRM_DEVICE void hrm__stream_interval(const hrm__stream *S, int i, int m, 
 }
 
 /* The stream's last point's index in its window. */
-static HRM_DEVICE HRM__CALL int hrm__stream_last(const hrm__stream *S) { return (S->n < 4 ? S->n : 4) - 1; }
+static HRM_DEVICE int hrm__stream_last(const hrm__stream *S) { return (S->n < 4 ? S->n : 4) - 1; }
 
 /* The stream's next point, offset x beyond the last, sigma_t f. An
    interval is integrated for good (tc, up to point ci) once a point
@@ -2045,27 +2045,32 @@ static HRM_DEVICE HRM__CALL void hrm__cheb_fit(const hrm_real f[HRM__CHEB + 1], 
     hrm_real sum = 0, alt = 0;
     int j, k, step = HRM__CHEB / n;
     /* the DCT-I: T_k at the degree-n points are row k, every step-th
-       column, the ends halved; four rows at a time, their sums
-       independent chains (rows past n repeat row n, unused) */
-    for (k = 0; k <= n; k += 4) {
-        const hrm_real *T0 = hrm__cheb_T[k], *T1 = hrm__cheb_T[k + 1 <= n ? k + 1 : n],
-                       *T2 = hrm__cheb_T[k + 2 <= n ? k + 2 : n], *T3 = hrm__cheb_T[k + 3 <= n ? k + 3 : n];
-        hrm_real acc[4];
-        int q;
-        acc[0] = (f[0] * T0[0] + f[HRM__CHEB] * T0[HRM__CHEB]) / 2;
-        acc[1] = (f[0] * T1[0] + f[HRM__CHEB] * T1[HRM__CHEB]) / 2;
-        acc[2] = (f[0] * T2[0] + f[HRM__CHEB] * T2[HRM__CHEB]) / 2;
-        acc[3] = (f[0] * T3[0] + f[HRM__CHEB] * T3[HRM__CHEB]) / 2;
+       column, the ends halved; rows below n four at a time (their sums
+       independent chains), the rest one at a time */
+    for (k = 0; k + 4 <= n; k += 4) {
+        const hrm_real *T0 = hrm__cheb_T[k], *T1 = hrm__cheb_T[k + 1], *T2 = hrm__cheb_T[k + 2],
+                       *T3 = hrm__cheb_T[k + 3];
+        hrm_real a0 = (f[0] * T0[0] + f[HRM__CHEB] * T0[HRM__CHEB]) / 2,
+                 a1 = (f[0] * T1[0] + f[HRM__CHEB] * T1[HRM__CHEB]) / 2,
+                 a2 = (f[0] * T2[0] + f[HRM__CHEB] * T2[HRM__CHEB]) / 2,
+                 a3 = (f[0] * T3[0] + f[HRM__CHEB] * T3[HRM__CHEB]) / 2, w = (hrm_real)2 / (hrm_real)n;
         for (j = step; j < HRM__CHEB; j += step) {
-            acc[0] += f[j] * T0[j];
-            acc[1] += f[j] * T1[j];
-            acc[2] += f[j] * T2[j];
-            acc[3] += f[j] * T3[j];
+            a0 += f[j] * T0[j];
+            a1 += f[j] * T1[j];
+            a2 += f[j] * T2[j];
+            a3 += f[j] * T3[j];
         }
-        for (q = 0; q < 4 && k + q <= n; ++q) {
-            hrm_real a = acc[q] * ((hrm_real)2 / (hrm_real)n);
-            d[k + q] = (k + q == 0 || k + q == n) ? a / 2 : a;
-        }
+        d[k] = k == 0 ? a0 * w / 2 : a0 * w;
+        d[k + 1] = a1 * w;
+        d[k + 2] = a2 * w;
+        d[k + 3] = a3 * w;
+    }
+    for (; k <= n; ++k) {
+        const hrm_real *T = hrm__cheb_T[k];
+        hrm_real a = (f[0] * T[0] + f[HRM__CHEB] * T[HRM__CHEB]) / 2;
+        for (j = step; j < HRM__CHEB; j += step) a += f[j] * T[j];
+        a *= (hrm_real)2 / (hrm_real)n;
+        d[k] = (k == 0 || k == n) ? a / 2 : a;
     }
     d[n + 1] = d[n + 2] = 0;
     /* the integral of T_0 is T_1, of T_1 is T_2 / 4, of T_k is
@@ -3042,6 +3047,13 @@ static HRM_DEVICE hrm_real hrm__mix_u_of_t(void *user, hrm_real t)
     return (hrm_real)hrm__mix_u((const hrm_ray_plan *)user, (double)t);
 }
 
+/* The secant through a bracket's ends (lo, flo), (hi, fhi): where it
+   crosses 0. */
+static HRM_DEVICE double hrm__falsi(double lo, double flo, double hi, double fhi)
+{
+    return lo - flo * (hi - lo) / (fhi - flo);
+}
+
 static HRM_DEVICE HRM__CALL double hrm__mix_invert(hrm_ray_plan *p, double want)
 {
     double lo = p->t0, hi = p->t1, flo = -want, fhi, t, step, last;
@@ -3058,14 +3070,13 @@ static HRM_DEVICE HRM__CALL double hrm__mix_invert(hrm_ray_plan *p, double want)
             hi = p->t0;
             for (it = 0; it < p->nmix; ++it)
                 if (p->delta[it] + p->D[it] > hi) hi = p->delta[it] + p->D[it];
-            for (it = 0; it < 2100 && hrm__mix_u(p, hi) < want; ++it) hi = p->t0 + 2 * (hi - p->t0) + 1;
-            fhi = hrm__mix_u(p, hi) - want;
+            for (it = 0; (fhi = hrm__mix_u(p, hi) - want) < 0 && it < 2100; ++it) hi = p->t0 + 2 * (hi - p->t0) + 1;
         } else {
             fhi = p->u1 - want;
         }
         /* the solve's nodes come mostly in order: the last inversion
            bounds this one and its tangent gives the first guess */
-        t = lo - flo * (hi - lo) / (fhi - flo);
+        t = hrm__falsi(lo, flo, hi, fhi);
         if (p->last_u > 0 && p->last_u < p->u1) {
             double g = hrm__mix_du(p, p->last_t), nt = g > 0 ? p->last_t + (want - p->last_u) / g : t;
             if (want > p->last_u) {
@@ -3075,7 +3086,7 @@ static HRM_DEVICE HRM__CALL double hrm__mix_invert(hrm_ray_plan *p, double want)
                 hi = p->last_t;
                 fhi = p->last_u - want;
             }
-            t = nt > lo && nt < hi ? nt : lo - flo * (hi - lo) / (fhi - flo);
+            t = nt > lo && nt < hi ? nt : hrm__falsi(lo, flo, hi, fhi);
         }
         if (!(t > lo && t < hi)) t = (lo + hi) / 2;
         step = last = hi - lo;
@@ -3100,7 +3111,7 @@ static HRM_DEVICE HRM__CALL double hrm__mix_invert(hrm_ray_plan *p, double want)
             if (g > 0 && fabs(f) <= 8 * DBL_EPSILON * fabs(t) * g) break; /* Newton's step below rounding */
             nt = g > 0 ? t - f / g : lo;
             if (!(nt > lo && nt < hi) || 2 * fabs(nt - t) > last) {
-                nt = lo - flo * (hi - lo) / (fhi - flo);
+                nt = hrm__falsi(lo, flo, hi, fhi);
                 if (!(nt > lo && nt < hi)) nt = (lo + hi) / 2;
             }
             last = step;
@@ -3454,9 +3465,9 @@ static HRM_DEVICE void hrm__medium_at(hrm__ctx *c, hrm_real s, hrm_real s_raw, h
            them): the panel missed something between its samples (a dense
            slab; a bump narrower than their spacing: nested Simpson, rtol
            1e-3, a Gaussian bump to 2.2 times the medium, 0.03 wide on a
-           unit ray, L 44 rtol off with HRM_OK where sigma_s alone was
-           held against twice the samples); hrm__dispatch samples it there
-           and solves again */
+           unit ray: L 44 rtol off with HRM_OK if sigma_s alone is held
+           against twice the samples); hrm__dispatch samples it there and
+           solves again */
         tp = &c->tau->tab[c->tau->hit % HRM_TAU_PANELS];
         /* (not at a breakpoint, whose sample is on the other panel's side) */
         for (i = 0; i < HRM__CH && c->tau->count > 0 && !c->layer_miss && s == s_raw; ++i) {
@@ -3468,8 +3479,9 @@ static HRM_DEVICE void hrm__medium_at(hrm__ctx *c, hrm_real s, hrm_real s_raw, h
             }
         }
         /* the coefficients the source did not ask for read as zero again
-           (sigma_t fetched for this check alone) */
-        if (st_known && !c->need_st) {
+           (sigma_t fetched for this check alone; decoupled tau needs it
+           nowhere else) */
+        if (c->mcheck) {
             if (!(c->use_le && !c->per_length)) hrm__fill(sa, HRM__CH, 0);
             if (!c->use_li) hrm__fill(ss, HRM__CH, 0);
         }
@@ -4503,10 +4515,9 @@ static HRM_DEVICE HRM__CALL int hrm__rk_step(hrm__ctx *c, const hrm__tableau *tb
         for (n = 0; n < HRM__CH; ++n) {
             if (err) ynew[n] += c->sbar[n] * (off_end - start->off);
             else hrm__sum(&ynew[n], &c->ksum[n], c->sbar[n] * (off_end - start->off));
-            if (ynew[n] < y[n]) { /* tau nondecreasing; the sum's lost part with it */
-                ynew[n] = y[n];
-                if (!err) c->ksum[n] = 0;
-            }
+            /* tau nondecreasing (a fixed step updates y in place: its
+               caller keeps tau at the start and holds it there) */
+            if (ynew[n] < y[n]) ynew[n] = y[n];
         }
     }
     if (end_stage >= 0) *end = pts[end_stage];
@@ -4518,6 +4529,19 @@ static HRM_DEVICE void hrm__ivp_init(const hrm__ctx *c, hrm_real y[HRM__NY])
 {
     hrm__fill(y, HRM__CH, c->rte ? 1 : 0);
     hrm__fill(y + HRM__CH, HRM__CH, 0);
+}
+
+/* Coupled tau held nondecreasing over a fixed step: below its value at
+   the step's start (tau_p), it is that value, and the compensated sum's
+   lost part goes with the clamped one. */
+static HRM_DEVICE void hrm__tau_floor(hrm__ctx *c, hrm_real *y, const hrm_real tau_p[HRM__CH])
+{
+    int i;
+    for (i = 0; i < HRM__CH; ++i)
+        if (y[i] < tau_p[i]) {
+            y[i] = tau_p[i];
+            c->ksum[i] = 0;
+        }
 }
 
 /* Fixed-step IVP driver: Euler, RK4 and Adams-Bashforth 4 (three RK4 steps
@@ -4547,7 +4571,9 @@ static HRM_DEVICE HRM__CALL void hrm__ivp_fixed(hrm__ctx *c, const hrm__tableau 
                 hrm__deriv(c, &start, y, f[n % 4]);
             }
             if (!have) hrm__eval(c, p, &start);
+            memcpy(tau_p, y, sizeof tau_p);
             have = hrm__rk_step(c, tb, &start, &end, p, q, y, y, 0, &ni, 0);
+            if (c->coupled) hrm__tau_floor(c, y, tau_p);
             if (have) start = end;
         } else {
             if (!have) hrm__eval(c, p, &start);
@@ -4575,13 +4601,8 @@ static HRM_DEVICE HRM__CALL void hrm__ivp_fixed(hrm__ctx *c, const hrm__tableau 
             if (c->coupled) {
                 hrm_real off_q, J;
                 hrm__map(c, q, &off_q, &J);
-                for (i = 0; i < HRM__CH; ++i) {
-                    hrm__sum(&y[i], &c->ksum[i], c->sbar[i] * (off_q - start.off));
-                    if (y[i] < tau_p[i]) { /* the sum's lost part with it */
-                        y[i] = tau_p[i];
-                        c->ksum[i] = 0;
-                    }
-                }
+                for (i = 0; i < HRM__CH; ++i) hrm__sum(&y[i], &c->ksum[i], c->sbar[i] * (off_q - start.off));
+                hrm__tau_floor(c, y, tau_p);
             }
         }
         c->stats.steps++;
@@ -6879,7 +6900,6 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__finish(hrm__ctx *c, const hrm_option
                and cutting it would bias the mean over pixels) */
             if (!adaptive && !c->expo && l > top && (l <= 2 * top || o->method == HRM_MONTE_CARLO)) {
                 top = l;
-                slack = top;
             }
             if (l > top) {
                 cut = l - top;
