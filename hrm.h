@@ -352,10 +352,10 @@
    helps, or t cannot resolve a step), TOLERANCE (the accepted estimates
    exceed atol + 3 rtol |L|, also after one more pass at the scale found),
    RTOL_CLIPPED (rtol below 100 epsilons, raised to it).
-   result.error: the sum of the accepted estimates per channel, whatever
-   the status (-1 for fixed-step methods). Every L lies in [0, the largest
-   S/sigma_t sampled times 1 - Tr], what that cuts counted in result.error
-   (fixed steps: up to twice it, Monte Carlo any; past: the bound, TOLERANCE).
+   result.error: the accepted estimates' sum per channel, any status (-1:
+   fixed steps). Every L (not the RTE form's fixed steps or Le per length)
+   lies in [0, the largest S/sigma_t sampled times 1 - Tr], cuts counted in
+   result.error (fixed steps to 2x, Monte Carlo any; past: bound, TOLERANCE).
    Not seen: a feature between an accepted step's samples (a light needs
    its warp, an occluder its breakpoints; constants and callbacks may see
    it apart). Munoz's, Gonterman's controllers (eq. 12, 3.4) unverified.
