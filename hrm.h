@@ -6735,7 +6735,16 @@ static HRM_DEVICE HRM__CALL int hrm__locate_sigma_jump(hrm__ctx *c, hrm_real a, 
    panels must then reproduce: a feature a few scan points wide is not
    lost between the samples of its first panel (9 over the whole ray where
    sigma_t is 0 at t0). What lies between two neighbours unseen stays
-   unseen. Not where a transmittance callback gives Tr: no layer to
+   unseen. A sample that stands above or below both neighbours by an
+   eighth of the three's largest is taught too: a bump or a hole a few
+   scan points wide that changes by less than a factor 2 a spacing, which
+   the layer's first panels step over (a Gaussian hole to 0.41 of the
+   medium, 0.04 wide at half depth, on a unit ray of tau 3.4: Tr 9% low,
+   L 8.6 rtol off with HRM_OK at rtol 1e-2; in a random search of dips and bumps under a Gaussian Li,
+   nested Simpson at rtol 1e-1..1e-3, 126 and 55 of 10 000 solves silent
+   without, 18 and 16 with it, those left the source's own miss of a
+   narrow Li, as silent with the exact Tr given). Not where a
+   transmittance callback gives Tr: no layer to
    teach, and the source's own search (nested Simpson, global
    Gauss-Kronrod) or step control sees what sigma_s does to it (33 sigma
    calls a solve saved). The scan ends where the trapezoid rule on its
@@ -6750,7 +6759,8 @@ static HRM_DEVICE HRM__CALL void hrm__scan_medium(hrm__ctx *c)
     hrm_real sa[HRM__CH], sx[HRM__CH];
     hrm_real a = 0, fa = hrm__sigma_sum(c, 0, 0, sa), tau[HRM__CH], least;
     hrm_real deep = 2 * HRM_LOG(64 / c->rtol);
-    int k = 1, b = 0, i, nscan = HRM__SCAN;
+    int k = 1, b = 0, i, nscan = HRM__SCAN, prev = 0;
+    hrm_real fp = 0;
     hrm__fill(tau, HRM__CH, 0);
     if (c->m->feature > 0) {
         /* as many as the medium's thinnest feature asks for */
@@ -6780,8 +6790,18 @@ static HRM_DEVICE HRM__CALL void hrm__scan_medium(hrm__ctx *c)
                 else if (a > 0) hrm__tau_learn(c->tau, a, sa);
             }
         }
+        if (c->decoupled && prev) {
+            /* a is a peak or a trough of the scan's samples, off the line
+               through its neighbours by an eighth of the largest: taught */
+            hrm_real big = fp > fx ? fp : fx;
+            big = fa > big ? fa : big;
+            if (((fa < fp && fa < fx) || (fa > fp && fa > fx)) && HRM_FABS(fa - (fp / 2 + fx / 2)) > big / 8)
+                hrm__tau_learn(c->tau, a, sa);
+        }
         a = x;
         if (least > deep) return;
+        fp = fa;
+        prev = !is_brk;
         if (is_brk) fa = hrm__sigma_sum(c, x, 1, sa);
         else {
             fa = fx;

@@ -1583,7 +1583,7 @@ static void tr_infinite_default(void)
             }
 }
 
-/* 14. A bump of the medium narrower than the layer's first samples, under
+/* 14. A bump or a hole of the medium narrower than the layer's first samples, under
    a light that varies over it (the case of a camera ray through fBm smoke
    under a spot light): sigma_t = b (1 + a exp(-((t - c) / w)^2)),
    albedo 0.8, Li = 1 + k exp(-((t - lc) / lw)^2), on [0, 1]. Four bumps
@@ -1595,7 +1595,12 @@ static void tr_infinite_default(void)
    the medium at rtol 1e-3, which the layer's first panel (degree 8 over
    the ray) steps over and whose node samples were held, as sigma_s
    alone, against twice the panel's samples (every adaptive method up to
-   44 rtol off). Each at rtol, 3 rtol and 10 rtol, every adaptive method
+   44 rtol off); four holes (a < 0: down to 0.34-0.48 of the medium,
+   0.03-0.05 wide at half depth) that change by less than a factor 2 from
+   one scan point to the next, so that the scan taught the layer nothing
+   and its first panels stepped over them (every adaptive method HRM_OK
+   up to 38 rtol off, until the scan taught its troughs and peaks). Each
+   at rtol, 3 rtol and 10 rtol, every adaptive method
    (Gauss-Kronrod global and local), no warp, the distance warp and the
    equiangular warp towards Li's peak, the medium as one sigma callback
    and as sigma_a and sigma_s: HRM_OK within 3 rtol of the reference
@@ -1659,13 +1664,17 @@ static void tr_bump_lifn(void *u, hrm_real t, hrm_real out[NCH])
 
 static void tr_missed_bump(void)
 {
-    static const tr_bump bumps[4] = {{0.5326, 0.1175, 8.196, 0.5412, 0.1426, 24.04, 1.820, 3e-2},
+    static const tr_bump bumps[8] = {{0.5326, 0.1175, 8.196, 0.5412, 0.1426, 24.04, 1.820, 3e-2},
                                      {0.4768, 0.1284, 4.447, 0.5149, 0.1037, 21.32, 1.310, 3e-2},
                                      {0.5888, 0.0311, 1.234, 0.6388, 0.3482, 25.81, 1.571, 1e-3},
-                                     {0.4067, 0.0302, 0.870, 0.4433, 0.1998, 4.86, 0.841, 1e-3}};
+                                     {0.4067, 0.0302, 0.870, 0.4433, 0.1998, 4.86, 0.841, 1e-3},
+                                     {0.2364, 0.0174, -0.655, 0.8630, 0.3109, 19.16, 2.118, 1e-3},
+                                     {0.4218, 0.0205, -0.575, 0.5999, 0.2076, 26.34, 2.470, 1e-3},
+                                     {0.2414, 0.0288, -0.524, 0.7589, 0.1955, 22.69, 3.383, 1e-2},
+                                     {0.2343, 0.0269, -0.661, 0.7961, 0.2698, 18.75, 3.358, 1e-2}};
     int bi, mi, loc, w, f, r, c, ok = 0, runs = 0;
     long evals = 0;
-    for (bi = 0; bi < 4; ++bi) {
+    for (bi = 0; bi < 8; ++bi) {
         tr_bump q = bumps[bi];
         double want = gl_integrate(tr_bump_integrand, &q, 0, 1, 400, 10, 0, 0);
         for (mi = 0; mi < N_METHODS_ALL; ++mi)
