@@ -389,25 +389,25 @@
    ==========================================================================
    Abscissae in [t0, t1], strictly increasing, at most HRM_MAX_BREAKS,
    where the integrand may jump (a shadow's edges, a medium's boundary):
-   each piece is solved on its own (fixed-step methods share N by length
-   in u, one step a piece at least; Simpson and RK4 take one more sample a
-   breakpoint), sampled 64 ulps inside its ends (an edge 60 ulps off still
-   works), the layer's panels ending there. A budget below (nbreaks + 1)
-   times a method's least cost: HRM_ERR_BAD_OPTION.
+   each piece is solved on its own (N, or the adaptive quadratures' first
+   panels, shared by length in u: a step, 2 panels, 1 interval a piece at
+   least; Simpson, RK4 one more sample a breakpoint), sampled 64 ulps
+   inside its ends (an edge 60 ulps off still works), the layer's panels
+   ending there. A budget below (nbreaks + 1) times a method's least cost
+   (the first panels where nbreaks is 0): HRM_ERR_BAD_OPTION.
    Found jumps (find_jumps 0, the default): nested Simpson and global
    Gauss-Kronrod bisect on the source an interval that keeps 30% of its
    parent's estimate three splits in a row, where refining on would cost
    more than 64 evaluations; a jump of at least 1% is located to 4 ulps
    of t, made a breakpoint and the solve run again (three halvings that
-   split a smooth change end the search, and the solve goes on). Every
-   adaptive method (fixed-step ones with find_jumps 1) first scans sigma_t
-   (callbacks, no transmittance callback) at 33 points, or at the spacing
-   medium.feature gives (4097 at most), and bisects where neighbours differ
-   by a factor 2: a jump or a medium's edge is made a breakpoint, a steep
-   smooth change is taught to the layer; the scan ends where its tau
-   passes 2 ln(64 / rtol). Located points are returned in result.jumps
-   (the next pixel's breakpoints). find_jumps -1: neither. A feature
-   narrower than the scan's spacing may go unseen: give medium.feature.
+   split a smooth change end the search). Every adaptive method (fixed-
+   step ones with find_jumps 1) first scans sigma_t (callbacks, no
+   transmittance callback) at 33 points, or at medium.feature's spacing
+   (4097 at most): a factor 2 between neighbours is bisected, a jump or
+   edge made a breakpoint, a steep smooth change taught to the layer, as
+   is a sample 1/8 above or below both neighbours; the scan ends where its
+   tau passes 2 ln(64 / rtol). Located points: result.jumps (the next
+   pixel's breakpoints). -1: neither. Finer detail needs medium.feature.
 
    ==========================================================================
    EXPONENTIAL FITTING (options.exponential)
@@ -563,7 +563,7 @@ typedef enum hrm_status {
     X(HRM_EULER, "euler", HRM__FIXED_IVP, 32, 1, 1, &hrm__euler, 0, 2, HRM__DRV_IVP) \
     X(HRM_RK4, "rk4", HRM__FIXED_IVP, 32, 4, 1, &hrm__rk4, 0, 1, HRM__DRV_IVP) \
     X(HRM_ADAMS_BASHFORTH, "adams-bashforth", HRM__FIXED_IVP, 32, 4, 1, &hrm__rk4, 0, 1, HRM__DRV_AB4) \
-    X(HRM_NESTED_SIMPSON, "nested-simpson", HRM__ADAPTIVE_QUAD, 2, 6, 0, 0, 0, 0, HRM__DRV_NS) \
+    X(HRM_NESTED_SIMPSON, "nested-simpson", HRM__ADAPTIVE_QUAD, 4, 6, 0, 0, 0, 0, HRM__DRV_NS) \
     X(HRM_GAUSS_KRONROD, "gauss-kronrod", HRM__ADAPTIVE_QUAD, 1, 22, 0, 0, 1, 0, HRM__DRV_GK) \
     X(HRM_BOGACKI_SHAMPINE, "bogacki-shampine", HRM__PAIR, 0, 3, 1, &hrm__bs, 1, 0, HRM__DRV_PAIR) \
     X(HRM_DORMAND_PRINCE, "dormand-prince", HRM__PAIR, 0, 5, 1, &hrm__dp, 1, 0, HRM__DRV_PAIR) \
@@ -695,9 +695,10 @@ typedef struct hrm_options {
                            Monte Carlo samples. 0: 32. Typical values to start
                            with: 8-32 for Simpson/RK4 on smooth media,
                            64-256 for the rectangle rule. Nested Simpson and
-                           Gauss-Kronrod: initial panels/intervals (0: 2 and
-                           1); ignored by the Runge-Kutta pairs.
-                           Negative: error. */
+                           Gauss-Kronrod: initial panels/intervals over the
+                           ray (0: 4 and 1), shared by length between
+                           breakpoints, at least 2 and 1 a piece; ignored
+                           by the Runge-Kutta pairs. Negative: error. */
     hrm_form form;      /* IVP solvers (Euler, RK4, Adams-Bashforth and the
                            Runge-Kutta pairs). 0: optical-depth form */
     uint64_t seed;      /* Monte Carlo and jitter; vary it per ray/pixel. */
@@ -1507,6 +1508,7 @@ typedef struct hrm__ctx {
     int njumps;
     hrm_real jumps[HRM_MAX_JUMPS]; /* located, as t */
     int layer_miss, restarts;  /* a node's sigma the layer's panel missed */
+    int panels0;               /* nested Simpson and Gauss-Kronrod: this piece's first panels */
     hrm_real miss_off, miss_s;
     hrm_real w_ua;             /* equiangular: the angle of t0 (pa, which a
                                   piece between breakpoints moves) */
@@ -6043,14 +6045,25 @@ static HRM_DEVICE size_t hrm__ws_bytes(const hrm_options *o)
     return n;
 }
 
-/* The least evaluations one piece of the ray costs the method (its first
-   step, or its initial panels or intervals). */
-static HRM_DEVICE long hrm__piece_cost(const hrm_options *o)
+/* Nested Simpson's and Gauss-Kronrod's first panels or intervals on a
+   piece of the ray: options.steps shared by length in the integration
+   variable (share, of [pa, pb]), at least 2 panels or 1 interval (or
+   steps, where fewer): a ray cut by breakpoints starts no finer than
+   its pieces ask for. */
+static HRM_DEVICE int hrm__panels_least(const hrm_options *o)
+{
+    int lo = hrm__methods[o->method].driver == HRM__DRV_NS ? 2 : 1;
+    return o->steps < lo ? o->steps : lo;
+}
+
+/* What a piece of the ray costs the method at least: its first step, or
+   its first n panels or intervals. */
+static HRM_DEVICE long hrm__piece_cost(const hrm_options *o, long n)
 {
     const hrm__method_info *mi = &hrm__methods[o->method];
     return mi->family == HRM__PAIR ? hrm__stage_cost(mi->tb) + 1L
-         : mi->driver == HRM__DRV_NS ? 4L * o->steps + 1
-         : mi->driver == HRM__DRV_GK ? (o->gk_rule == HRM_GK_K7 ? 7L : 15L) * o->steps + 2
+         : mi->driver == HRM__DRV_NS ? 4L * n + 1
+         : mi->driver == HRM__DRV_GK ? (o->gk_rule == HRM_GK_K7 ? 7L : 15L) * n + 2
          : 0L;
 }
 
@@ -6058,6 +6071,7 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__resolve(const hrm_options *in, hrm_o
 {
     hrm_options d = hrm_default_options(in ? in->method : HRM_METHOD_DEFAULT);
     const hrm__method_info *mi;
+    int estimator = tau_in_t && !(in && in->method != HRM_METHOD_DEFAULT); /* (its budget: its own) */
     if (!in) {
         *o = d;
         in = &d;
@@ -6131,7 +6145,8 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__resolve(const hrm_options *in, hrm_o
     /* A budget below one step of the method on every piece could not be
        honoured (a breakpoint count out of range is the breakpoints' error). */
     if (o->nbreaks < 0 || o->nbreaks > HRM_MAX_BREAKS) return HRM_ERR_BAD_BREAKS;
-    if (o->max_evals < hrm__piece_cost(o) * ((long)(o->nbreaks > 0 ? o->nbreaks : 0) + 1))
+    if (!estimator && o->max_evals < (o->nbreaks > 0 ? hrm__piece_cost(o, hrm__panels_least(o)) * ((long)o->nbreaks + 1)
+                                                     : hrm__piece_cost(o, o->steps)))
         return HRM_ERR_BAD_OPTION;
     /* the workspace: with its size, at least what the solve takes, on 16 */
     if (o->workspace ? o->workspace_size < hrm__ws_bytes(o) || (uintptr_t)o->workspace % 16 != 0
@@ -6249,7 +6264,7 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, 
        1e-5 of itself), which the search would take for jumps and solve
        again for nothing. */
     t_fine = HRM_FABS(t0) * HRM__EPS <= c->T / 4096;
-    c->piece_cost = hrm__piece_cost(o);
+    c->piece_cost = hrm__piece_cost(o, hrm__panels_least(o));
     c->split_cost = mi->driver == HRM__DRV_NS ? 4 : o->gk_rule == HRM_GK_K7 ? 14 : 30;
     c->find_jumps = o->find_jumps >= 0 && !c->rte &&
                     (HRM_FABS(t0) <= c->T || HRM_FABS(t0) * HRM__EPS <= c->T / HRM__R(1073741824.0)) &&
@@ -6362,9 +6377,9 @@ static HRM_DEVICE void hrm__adaptive_once(hrm__ctx *c, const hrm_options *o, hrm
     hrm__fill(c->err_acc, HRM__CH, 0);
     c->rough_left = HRM__JUMP;
     switch (hrm__driver(o)) {
-    case HRM__DRV_NS: hrm__nested_simpson(c, o->steps, y); break;
-    case HRM__DRV_GK_LOCAL: hrm__gk_local(c, o->steps, y); break;
-    case HRM__DRV_GK: hrm__gk_global(c, o->steps, y); break;
+    case HRM__DRV_NS: hrm__nested_simpson(c, c->panels0, y); break;
+    case HRM__DRV_GK_LOCAL: hrm__gk_local(c, c->panels0, y); break;
+    case HRM__DRV_GK: hrm__gk_global(c, c->panels0, y); break;
     default: hrm__ivp_adaptive(c, mi->tb, o->control, o->h0, y);
     }
 }
@@ -6430,6 +6445,9 @@ static HRM_DEVICE void hrm__dispatch_one(hrm__ctx *c, const hrm_options *o, int 
     case HRM__DRV_IVP:
     case HRM__DRV_AB4: hrm__ivp_fixed(c, mi->tb, mi->driver == HRM__DRV_AB4, N, y); break;
     default:
+        /* fewer first panels where the budget's rest holds no more */
+        while (N > hrm__panels_least(o) && hrm__piece_cost(o, N) > c->max_evals - c->stats.evals) --N;
+        c->panels0 = N;
         hrm__adaptive(c, o, y);
     }
 }
@@ -6551,7 +6569,11 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__solve_broken(hrm__ctx *c, co
         hrm__fill(c->scale, HRM__NY, 0);
         /* the budget keeps what the pieces after this one need to start */
         c->max_evals = max_evals - c->piece_cost * (long)(n - 1 - k);
-        hrm__dispatch_one(c, o, fixed ? N[k] : o->steps, yk);
+        if (!fixed) {
+            N[k] = (int)(hrm__share(o->steps, P[k], P[k + 1], pa, pb) + HRM__R(0.5));
+            if (N[k] < hrm__panels_least(o)) N[k] = hrm__panels_least(o);
+        }
+        hrm__dispatch_one(c, o, N[k], yk);
         c->max_evals = max_evals;
         for (i = 0; i < HRM__CH; ++i) {
             /* Tr up to the piece's start, where the piece's L is relative */

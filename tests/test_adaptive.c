@@ -412,7 +412,8 @@ static void ad_limits(void)
     for (i = 0; i < AD_NCFG; ++i) {
         const ad_cfg *cfg = &ad_cfgs[i];
         long budget, minimum = is_pair(cfg->method) ? cfg->cost + 1L
-                             : cfg->method == HRM_GAUSS_KRONROD ? cfg->cost + 2L : 4L * 2 + 1;
+                             : cfg->method == HRM_GAUSS_KRONROD ? cfg->cost + 2L
+                             : 4L * hrm_default_options(HRM_NESTED_SIMPSON).steps + 1; /* its first panels */
         long over = 0, badst = 0, unfinite = 0, miscount = 0, tried = 0, full_evals;
         double t0, t1, worst = 0, rtol = real_is_float() ? 3e-5 : 1e-6;
         hrm_options o = ad_options(cfg, rtol);

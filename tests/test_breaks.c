@@ -1434,6 +1434,61 @@ static void br_mix_inverse(void)
     }
 }
 
+/* The adaptive quadratures' first panels (options.steps) over a ray cut
+   by breakpoints: shared by length in the integration variable, at least
+   2 panels (nested Simpson) or 1 interval (Gauss-Kronrod) a piece. On a
+   constant source in a homogeneous medium every first panel is accepted
+   as it is, so stats.steps counts them: [0, 10] with breakpoints {5} or
+   {2, 3}, steps 0 (the defaults 4 and 1), 4 and 8; e.g. nested Simpson,
+   steps 8, {2, 3}: shares 1.6, 0.8, 5.6 -> 2, 2, 6 panels. L against its
+   closed form 0.1 (1 - exp(-10 sigma_t)) / sigma_t, sigma_t = 0.1: both
+   rules are exact on a polynomial times an exponential of this size to
+   far below the bound 1e-6 (float: 1e-4). */
+static void br_li_one(void *u, hrm_real t, hrm_real out[NCH])
+{
+    int c;
+    (void)u;
+    (void)t;
+    for (c = 0; c < NCH; ++c) out[c] = 1;
+}
+
+static void br_first_panels(void)
+{
+    static const long want[2][3][3] = {{{4, 4, 7}, {4, 4, 7}, {8, 8, 10}}, {{1, 2, 3}, {4, 4, 5}, {8, 8, 9}}};
+    static const int steps[3] = {0, 4, 8};
+    double exact = 0.1 * -expm1(-1.0) / 0.1, bound = real_is_float() ? 1e-4 : 1e-6;
+    int mi, si, nb, c;
+    for (mi = 0; mi < 2; ++mi)
+        for (si = 0; si < 3; ++si)
+            for (nb = 0; nb < 3; ++nb) {
+                hrm_medium m;
+                hrm_options o = hrm_default_options(mi ? HRM_GAUSS_KRONROD : HRM_NESTED_SIMPSON);
+                hrm_real br[2] = {2, 3};
+                hrm_result r;
+                hrm_status st;
+                memset(&m, 0, sizeof m);
+                m.flags = HRM_MEDIUM_HOMOGENEOUS;
+                for (c = 0; c < NCH; ++c) {
+                    m.const_sigma_a[c] = 0;
+                    m.const_sigma_s[c] = (hrm_real)0.1;
+                }
+                m.Li = br_li_one;
+                o.steps = steps[si];
+                o.rtol = (hrm_real)1e-2;
+                o.find_jumps = -1;
+                if (nb == 1) br[0] = 5;
+                o.breaks = nb ? br : NULL;
+                o.nbreaks = nb;
+                st = hrm_solve(&m, 0, 10, &o, &r);
+                CHECK_INT(st, HRM_OK, "%s, steps %d, %d breakpoints: status", mi ? "gauss-kronrod" : "nested-simpson",
+                          steps[si], nb);
+                CHECK_INT(r.stats.steps, want[mi][si][nb], "%s, steps %d, %d breakpoints: first panels",
+                          mi ? "gauss-kronrod" : "nested-simpson", steps[si], nb);
+                CHECK_REL(r.L[0], exact, bound, "%s, steps %d, %d breakpoints: L", mi ? "gauss-kronrod" : "nested-simpson",
+                          steps[si], nb);
+            }
+}
+
 void breaks_tests(void)
 {
     RUN_GROUP(br_bad_lists);
@@ -1442,6 +1497,7 @@ void breaks_tests(void)
     RUN_GROUP(br_tau);
     RUN_GROUP(br_layer_miss);
     RUN_GROUP(br_scan);
+    RUN_GROUP(br_first_panels);
     RUN_GROUP(br_adaptive);
     RUN_GROUP(br_budget);
     RUN_GROUP(br_monte_carlo);
