@@ -6812,9 +6812,10 @@ static HRM_DEVICE HRM__CALL void hrm__scan_medium(hrm__ctx *c)
                 else if (a > 0) hrm__tau_learn(c->tau, a, sa);
             }
         }
-        if (c->decoupled && prev) {
+        if (c->decoupled && prev && c->tau->nmem < HRM__TMEM / 2) {
             /* a is a peak or a trough of the scan's samples, off the line
-               through its neighbours by an eighth of the largest: taught */
+               through its neighbours by an eighth of the largest: taught
+               (while half the layer's memory is left for its own) */
             hrm_real big = fp > fx ? fp : fx;
             big = fa > big ? fa : big;
             if (((fa < fp && fa < fx) || (fa > fp && fa > fx)) && HRM_FABS(fa - (fp / 2 + fx / 2)) > big / 8)
