@@ -269,10 +269,10 @@
    (the transmittance layer: 18); the pairs 14 and 40; Gauss-Kronrod 92,
    nested Simpson 120; the shadow-ray estimator 8; about 2.2 times that with
    8 channels, half in float, at most (48 + 48 HRM_CHANNELS) KiB; twice
-   with a shadow ray solved inside Li. options.workspace (the caller's
-   hrm_workspace_size bytes, aligned to 16, one a thread) holds the layer
-   and the adaptive storage instead: every method at most 21 KiB of stack,
-   38 with a shadow ray in the workspace's rest; bit-identical answers.
+   with a shadow ray solved inside Li. options.workspace (hrm_workspace_size
+   bytes, aligned to 16, one a thread) holds the layer, adaptive storage and
+   context instead, answers bit-identical: fixed-step methods 8 KiB of stack
+   (RK4, Adams-Bashforth 10), every method 17, 30 with a nested shadow ray.
    GPU kernels: under nvcc or hipcc every function is __host__ __device__
    (HRM_DEVICE; define it to override) and the tables exist on both sides.
    Build the medium in the kernel (callbacks: device functions), give each
@@ -4355,15 +4355,16 @@ static HRM_DEVICE HRM__CALL void hrm__rk_exp_miss(const hrm__nodes_info *ni, con
 
 /* The quadrature form of a step (see hrm__nodes_info): the distinct nodes
    in ascending order, L' = Tr S at each, no stage sums. */
-static HRM_DEVICE HRM__CALL int hrm__rk_quad(hrm__ctx *c, const hrm__nodes_info *ni, const hrm__pt *start,
+static HRM_DEVICE HRM__CALL HRM__NOINLINE int hrm__rk_quad(hrm__ctx *c, const hrm__nodes_info *ni, const hrm__pt *start,
                         hrm__pt *end, hrm_real p, hrm_real p_end, const hrm_real *y,
                         hrm_real *ynew, hrm_real *err, hrm_real *both)
 {
-    hrm__pt pn[HRM__MAX_STAGES], P[HRM__MAX_STAGES];
+    hrm__pt pn[HRM__MAX_STAGES]; /* the nodes (with an exponential fit, the
+                                    start's copy too: the fit's array) */
     const hrm__pt *qs[HRM__MAX_STAGES];
     hrm_real f[HRM__MAX_STAGES][HRM__CH], h = p_end - p, em[HRM__CH];
     int i, j, endj = -1;
-    if (c->expo) memset(P, 0, sizeof P);
+    if (c->expo) memset(pn, 0, sizeof pn);
     for (j = 0; j < ni->m; ++j) {
         const hrm__pt *q = start;
         hrm_real cj = ni->c[j];
@@ -4371,9 +4372,10 @@ static HRM_DEVICE HRM__CALL int hrm__rk_quad(hrm__ctx *c, const hrm__nodes_info 
             hrm__eval(c, cj == 1 ? p_end : p + cj * h, &pn[j]);
             q = &pn[j];
             if (cj == 1) endj = j;
+        } else if (c->expo) {
+            pn[j] = *start;
         }
         for (i = 0; i < HRM__CH; ++i) f[j][i] = q->tr[i] * q->gq[i];
-        if (c->expo) P[j] = *q;
         qs[j] = q;
     }
     hrm__fill(em, HRM__CH, 0);
@@ -4386,7 +4388,7 @@ static HRM_DEVICE HRM__CALL int hrm__rk_quad(hrm__ctx *c, const hrm__nodes_info 
            embedded estimates are those of the fitted values g (what is
            interpolated) times the exponential's mass over the step */
         hrm_real out[HRM__CH], mass[HRM__CH], g[HRM__EFIT_MAX][HRM__CH], un[HRM__CH];
-        hrm__efit_panel(c, &c->ef[0], P, h / 2, out, mass, g, un);
+        hrm__efit_panel(c, &c->ef[0], pn, h / 2, out, mass, g, un);
         for (i = 0; i < HRM__CH; ++i) {
             hrm_real eacc = 0, d[HRM__MAX_STAGES];
             for (j = 0; j < ni->m; ++j) {
@@ -4441,7 +4443,7 @@ static HRM_DEVICE HRM__CALL int hrm__rk_quad(hrm__ctx *c, const hrm__nodes_info 
     return endj >= 0;
 }
 
-static HRM_DEVICE HRM__CALL int hrm__rk_step(hrm__ctx *c, const hrm__tableau *tb, const hrm__pt *start,
+static HRM_DEVICE HRM__CALL HRM__NOINLINE int hrm__rk_stages(hrm__ctx *c, const hrm__tableau *tb, const hrm__pt *start,
                         hrm__pt *end, hrm_real p, hrm_real p_end,
                         const hrm_real *y, hrm_real *ynew, hrm_real *err,
                         const hrm__nodes_info *ni, hrm_real *both)
@@ -4453,7 +4455,6 @@ static HRM_DEVICE HRM__CALL int hrm__rk_step(hrm__ctx *c, const hrm__tableau *tb
     int i, j, n, end_stage = -1;
 
     HRM_ASSERT(tb->s <= HRM__MAX_STAGES);
-    if (!c->rte && !c->coupled) return hrm__rk_quad(c, ni, start, end, p, p_end, y, ynew, err, both);
     hrm__fill(Y, HRM__NY, 0);
     for (i = 0; i < tb->s; ++i) {
         hrm_real ci = tb->c[i];
@@ -4524,6 +4525,17 @@ static HRM_DEVICE HRM__CALL int hrm__rk_step(hrm__ctx *c, const hrm__tableau *tb
     }
     if (end_stage >= 0) *end = pts[end_stage];
     return end_stage >= 0;
+}
+
+/* One step: its quadrature form where the step needs no stage sums (the
+   optical-depth form, tau not coupled), else its stages; each in a frame
+   of its own, so that the one not taken reserves no stack. */
+static HRM_DEVICE int hrm__rk_step(hrm__ctx *c, const hrm__tableau *tb, const hrm__pt *start, hrm__pt *end,
+                                   hrm_real p, hrm_real p_end, const hrm_real *y, hrm_real *ynew, hrm_real *err,
+                                   const hrm__nodes_info *ni, hrm_real *both)
+{
+    if (!c->rte && !c->coupled) return hrm__rk_quad(c, ni, start, end, p, p_end, y, ynew, err, both);
+    return hrm__rk_stages(c, tb, start, end, p, p_end, y, ynew, err, ni, both);
 }
 
 /* Initial state: (tau, A) = 0 at t0, or (Tr, L) = (1, 0) at t1. */
@@ -6012,7 +6024,16 @@ HRM__DEF HRM_DEVICE hrm_options hrm_default_options(hrm_method method)
 #define HRM__NEED_GK 16u   /* global Gauss-Kronrod's intervals */
 #define HRM__NEED_FINISH 32u /* nested Simpson's finish stack: a workspace's
                               only (without one, the finish's own frame) */
-#define HRM__NEEDS 6
+#define HRM__NEED_CTX 64u  /* the solve's context: a workspace's only (without
+                              one, or in a GPU kernel, where memory no two
+                              threads share is slower than their stacks,
+                              the solve's own frame) */
+#define HRM__NEEDS 7
+#ifdef __CUDA_ARCH__
+#define HRM__CTX_NEED 0u
+#else
+#define HRM__CTX_NEED HRM__NEED_CTX
+#endif
 
 /* The bytes of need bit k (1u << k), rounded up to 16 (the alignment of
    the caller's workspace, which holds them in this order). */
@@ -6020,7 +6041,8 @@ static HRM_DEVICE size_t hrm__need_bytes(int k)
 {
     static const size_t bytes[HRM__NEEDS] = {sizeof(hrm__tau), sizeof(hrm__memo) * (HRM__MEMO + 1),
                                              sizeof(hrm__efit) * 2, sizeof(hrm__ns_store),
-                                             sizeof(hrm__gk_store), sizeof(hrm__ns_iv) * (HRM_MAX_DEPTH + 1)};
+                                             sizeof(hrm__gk_store), sizeof(hrm__ns_iv) * (HRM_MAX_DEPTH + 1),
+                                             sizeof(hrm__ctx)};
     return (bytes[k] + 15) / 16 * 16;
 }
 
@@ -6030,7 +6052,7 @@ static HRM_DEVICE size_t hrm__need_bytes(int k)
 static HRM_DEVICE unsigned hrm__may_need(const hrm_options *o)
 {
     int d = hrm__driver(o);
-    return HRM__NEED_LAYER | (hrm__is_adaptive(o->method) ? HRM__NEED_MEMO : 0u) |
+    return HRM__NEED_LAYER | HRM__CTX_NEED | (hrm__is_adaptive(o->method) ? HRM__NEED_MEMO : 0u) |
            (o->exponential ? HRM__NEED_EFIT : 0u) | (d == HRM__DRV_NS ? HRM__NEED_NS | HRM__NEED_FINISH : 0u) |
            (d == HRM__DRV_GK ? HRM__NEED_GK : 0u);
 }
@@ -7190,6 +7212,7 @@ static HRM_DEVICE unsigned hrm__needs(const hrm_medium *m, const hrm_options *o,
         need |= HRM__NEED_LAYER;
     if (hrm__is_adaptive(o->method)) need |= HRM__NEED_MEMO;
     if (o->exponential && hrm__tau_closed(src)) need |= HRM__NEED_EFIT;
+    need |= HRM__CTX_NEED;
     /* the drivers run where there is a source or tau comes from their
        nodes (not for Tr alone from the layer or a closed form) */
     if (!estimator && (le || li || !hrm__tau_closed(src)))
@@ -7240,53 +7263,59 @@ static HRM_DEVICE HRM__NOINLINE hrm_status hrm__with_gk(hrm__job *j)
     return hrm__stage(j);
 }
 
-/* The solve itself, once its storage is held. */
-static HRM_DEVICE HRM__CALL HRM__NOINLINE hrm_status hrm__solve_job(hrm__job *j)
+/* The solve itself, once its storage is held (c: its context, in the
+   caller's workspace or the frame of hrm__solve_local). */
+static HRM_DEVICE HRM__CALL HRM__NOINLINE hrm_status hrm__solve_job(hrm__job *j, hrm__ctx *c)
 {
-    hrm__ctx c;
     const hrm_medium *m = j->m;
     const hrm_options *o = &j->o;
     hrm_real y[HRM__NY], t1 = j->t1;
     hrm_status st;
     int k;
 
-    memset(&c, 0, sizeof c);
-    c.ns = (hrm__ns_store *)j->at[3];
-    c.gks = (hrm__gk_store *)j->at[4];
-    c.finish = (hrm__ns_iv *)j->at[5];
-    st = hrm__setup(&c, (hrm__tau *)j->at[0], (hrm__memo *)j->at[1], (hrm__efit *)j->at[2], m, j->t0, t1,
+    memset(c, 0, sizeof *c);
+    c->ns = (hrm__ns_store *)j->at[3];
+    c->gks = (hrm__gk_store *)j->at[4];
+    c->finish = (hrm__ns_iv *)j->at[5];
+    st = hrm__setup(c, (hrm__tau *)j->at[0], (hrm__memo *)j->at[1], (hrm__efit *)j->at[2], m, j->t0, t1,
                     o, j->tr_only);
-    *j->stats = c.stats;
+    *j->stats = c->stats;
     if (st != HRM_OK) return st;
     if (j->t0 == t1) {
         if (hrm__is_adaptive(o->method)) hrm__fill(j->err, HRM__CH, 0);
         return st;
     }
-    c.stats.t_cut = t1;
+    c->stats.t_cut = t1;
     if (j->estimator) {
         /* the shadow-ray estimator */
-        hrm__shadow_march(&c, o, y);
-        *j->stats = c.stats;
-        if (c.status != HRM_OK) return c.status;
+        hrm__shadow_march(c, o, y);
+        *j->stats = c->stats;
+        if (c->status != HRM_OK) return c->status;
         for (k = 0; k < HRM__CH; ++k) j->Tr[k] = HRM_EXP(-y[k]);
-        return c.warning;
+        return c->warning;
     }
-    if (c.scan && !(c.closed && !c.decoupled && !c.use_le && !c.use_li)) hrm__scan_medium(&c);
-    if (c.status != HRM_OK) {
+    if (c->scan && !(c->closed && !c->decoupled && !c->use_le && !c->use_li)) hrm__scan_medium(c);
+    if (c->status != HRM_OK) {
         hrm__fill(y, HRM__NY, 0); /* a callback's bad output: the status says it */
-    } else if (!c.use_le && !c.use_li && c.closed) {
+    } else if (!c->use_le && !c->use_li && c->closed) {
         /* Nothing to integrate: Tr alone, from the layer or a closed form. */
         hrm__fill(y, HRM__NY, 0);
     } else {
-        hrm__dispatch(&c, o, y);
+        hrm__dispatch(c, o, y);
     }
-    st = hrm__finish(&c, o, y, j->L, j->Tr, j->err);
-    *j->stats = c.stats;
+    st = hrm__finish(c, o, y, j->L, j->Tr, j->err);
+    *j->stats = c->stats;
     if (j->njumps && st >= 0) {
-        *j->njumps = c.njumps;
-        memcpy(j->jumps, c.jumps, sizeof c.jumps);
+        *j->njumps = c->njumps;
+        memcpy(j->jumps, c->jumps, sizeof c->jumps);
     }
     return st;
+}
+
+static HRM_DEVICE HRM__NOINLINE hrm_status hrm__solve_local(hrm__job *j)
+{
+    hrm__ctx c;
+    return hrm__solve_job(j, &c);
 }
 
 /* The storage j needs, then the solve: all of it from the caller's
@@ -7309,7 +7338,8 @@ static HRM_DEVICE hrm_status hrm__stage(hrm__job *j)
     if (j->need & HRM__NEED_EFIT) return hrm__with_efit(j);
     if (j->need & HRM__NEED_NS) return hrm__with_ns(j);
     if (j->need & HRM__NEED_GK) return hrm__with_gk(j);
-    return hrm__solve_job(j); /* (HRM__NEED_FINISH without a workspace: hrm__ns_local) */
+    /* (HRM__NEED_FINISH without a workspace: hrm__ns_local) */
+    return j->at[6] ? hrm__solve_job(j, (hrm__ctx *)j->at[6]) : hrm__solve_local(j);
 }
 
 /* The one solve behind hrm_solve and hrm_transmittance (tr_only: no
@@ -7350,7 +7380,7 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__run(const hrm_medium *m, hrm_real t0
     j.jumps = jumps;
     j.need = hrm__needs(m, &j.o, tr_only, j.estimator, t1);
     j.ws = (unsigned char *)j.o.workspace;
-    if (!j.ws) j.need &= ~HRM__NEED_FINISH;
+    if (!j.ws) j.need &= ~(HRM__NEED_FINISH | HRM__NEED_CTX);
     return hrm__stage(&j);
 }
 
