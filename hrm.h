@@ -6780,11 +6780,12 @@ static HRM_DEVICE HRM__CALL int hrm__locate_sigma_jump(hrm__ctx *c, hrm_real a, 
    lost between the samples of its first panel (9 over the whole ray where
    sigma_t is 0 at t0). What lies between two neighbours unseen stays
    unseen. A sample that stands above or below both neighbours by an
-   eighth of the three's largest is taught too: a bump or a hole a few
-   scan points wide that changes by less than a factor 2 a spacing, which
-   the layer's first panels step over (a Gaussian hole to 0.41 of the
-   medium, 0.04 wide at half depth, on a unit ray of tau 3.4: Tr 9% low,
-   L 8.6 rtol off with HRM_OK at rtol 1e-2; in a random search of dips and bumps under a Gaussian Li,
+   eighth of the three's largest is taught too (while half the layer's
+   memory is free): a bump or a hole a few scan points wide that changes
+   by less than a factor 2 a spacing, which the layer's first panels step
+   over (a Gaussian hole to 0.41 of the medium, 0.04 wide at half depth,
+   on a unit ray of tau 3.4: Tr 9% low, L 8.6 rtol off with HRM_OK at
+   rtol 1e-2; in a random search of holes and bumps under a Gaussian Li,
    nested Simpson at rtol 1e-1..1e-3, 126 and 55 of 10 000 solves silent
    without, 18 and 16 with it, those left the source's own miss of a
    narrow Li, as silent with the exact Tr given). Not where a
