@@ -271,8 +271,8 @@
    8 channels, half in float, at most (48 + 48 HRM_CHANNELS) KiB; twice
    with a shadow ray solved inside Li. options.workspace (hrm_workspace_size
    bytes, aligned to 16, one a thread) holds the layer, adaptive storage and
-   context instead, answers bit-identical: fixed-step methods 8 KiB of stack
-   (RK4, Adams-Bashforth 10), every method 17, 30 with a nested shadow ray.
+   context instead, answers bit-identical: fixed-step methods 7.5 KiB of
+   stack at most, every method 18, 33 with a nested shadow ray.
    GPU kernels: under nvcc or hipcc every function is __host__ __device__
    (HRM_DEVICE; define it to override) and the tables exist on both sides.
    Build the medium in the kernel (callbacks: device functions), give each
@@ -824,8 +824,9 @@ HRM_API HRM_DEVICE hrm_options hrm_default_options(hrm_method method);
 
 /* The bytes options.workspace must hold for a solve with these options
    (options NULL: the defaults'; 0 for options hrm_solve would reject): the
-   transmittance layer, and the adaptive methods' memo, fits, intervals,
-   samples and finish. A multiple of 16. */
+   transmittance layer, the solve's context, its pieces' ends between
+   breakpoints, and the adaptive methods' memo, fits, intervals, samples
+   and finish. A multiple of 16. */
 HRM_API HRM_DEVICE size_t hrm_workspace_size(const hrm_options *options);
 
 /* Solve along one ray from t0 to t1 (t0 <= t1, both finite).
@@ -1453,6 +1454,13 @@ typedef struct hrm__memo {
     hrm_real s, p, q[HRM__CH], st[HRM__CH], tr[HRM__CH];
 } hrm__memo;
 
+/* The pieces between breakpoints: their ends in p, and a fixed-step
+   method's steps on each (hrm__solve_broken). */
+typedef struct hrm__piece_tab {
+    hrm_real P[HRM_MAX_BREAKS + 2];
+    int N[HRM_MAX_BREAKS + 1];
+} hrm__piece_tab;
+
 typedef struct hrm__ctx {
     const hrm_medium *m;
     hrm__tau_src src;      /* where tau comes from */
@@ -1518,6 +1526,7 @@ typedef struct hrm__ctx {
     hrm__memo *memo;       /* HRM__MEMO + 1 entries (adaptive methods) */
     struct hrm__ns_store *ns;  /* nested Simpson's storage */
     struct hrm__ns_iv *finish; /* its finish's stack in the workspace, or NULL */
+    hrm__piece_tab *pieces; /* the pieces' tables in the workspace, or NULL */
     struct hrm__gk_store *gks; /* global Gauss-Kronrod's */
     int unresolved;        /* a warp's distinct nodes at one abscissa */
     long warp_calls;       /* the user warp's t_of_u and dt_du calls */
@@ -2455,6 +2464,22 @@ static HRM_DEVICE HRM__CALL void hrm__tau_march(hrm__ctx *c, hrm__tau *L, hrm__t
     }
 }
 
+/* Panel lo's coefficients, fallen out of the cache, fitted again from
+   the same abscissae (the same values again) into a new cache entry: a
+   frame of its own, which the march to a new panel does not hold. */
+static HRM_DEVICE HRM__CALL HRM__NOINLINE hrm__tcoef *hrm__tau_refit(hrm__ctx *c, hrm__tau *L, long lo)
+{
+    const hrm__tpanel *p = &L->tab[lo % HRM_TAU_PANELS];
+    hrm_real f[HRM__CH][HRM__CHEB + 1], dtau[HRM__CH], v[HRM__CH];
+    hrm__tcoef *co = hrm__tcache_slot(L);
+    int i;
+    hrm__sigma_t_at(c, p->a, 1, v);
+    for (i = 0; i < HRM__CH; ++i) f[i][0] = v[i];
+    hrm__tau_fit(c, L, p->a, p->b, p->deg, 0, p->tau_a, f, co, dtau);
+    co->id = lo;
+    return co;
+}
+
 /* tau(t0, t0 + off) in every channel. */
 static HRM_DEVICE HRM__CALL void hrm__tau_at(hrm__ctx *c, hrm__tau *L, hrm_real off, hrm_real tau[HRM__CH],
                         hrm_real *sig)
@@ -2522,13 +2547,7 @@ static HRM_DEVICE HRM__CALL void hrm__tau_at(hrm__ctx *c, hrm__tau *L, hrm_real 
             L->last = k;
             co = &L->cache[k];
         } else {
-            /* rebuild from the same abscissae: the same values again */
-            hrm_real f[HRM__CH][HRM__CHEB + 1], dtau[HRM__CH], v[HRM__CH];
-            co = hrm__tcache_slot(L);
-            hrm__sigma_t_at(c, p->a, 1, v);
-            for (i = 0; i < HRM__CH; ++i) f[i][0] = v[i];
-            hrm__tau_fit(c, L, p->a, p->b, p->deg, 0, p->tau_a, f, co, dtau);
-            co->id = lo;
+            co = hrm__tau_refit(c, L, lo);
         }
     }
     xi = 2 * (off - p->a) / (p->b - p->a) - 1;
@@ -3712,10 +3731,12 @@ static HRM_DEVICE void hrm__warn(hrm__ctx *c, hrm_status w);
 
 /* The fit on nodes y[0..n) (ascending, in [-1, 1]): the Legendre
    Vandermonde matrix V[j][k] = P_k(y_j) inverted by Gauss-Jordan with
-   partial pivoting (n <= 15; near-Gauss nodes keep it well conditioned). */
+   partial pivoting (n <= 15; near-Gauss nodes keep it well conditioned).
+   The identity it is augmented with, which becomes the inverse, is F->A
+   itself: V alone in the frame. */
 static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__efit_init(hrm__efit *F, const hrm_real *y, int n)
 {
-    hrm_real V[HRM__EFIT_MAX][2 * HRM__EFIT_MAX];
+    hrm_real V[HRM__EFIT_MAX][HRM__EFIT_MAX], (*I)[HRM__EFIT_MAX] = F->A;
     int j, k, r;
     F->n = n;
     for (j = 0; j < n; ++j) {
@@ -3729,27 +3750,30 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__efit_init(hrm__efit *F, cons
                 p1 = pk;
             }
             V[j][k] = pk;
-            V[j][n + k] = j == k ? 1 : 0;
+            I[j][k] = j == k ? 1 : 0;
         }
     }
     for (k = 0; k < n; ++k) {
         int piv = k;
         for (r = k + 1; r < n; ++r)
             if (HRM_FABS(V[r][k]) > HRM_FABS(V[piv][k])) piv = r;
-        for (j = 0; j < 2 * n; ++j) {
+        for (j = 0; j < n; ++j) {
             hrm_real t = V[k][j];
             V[k][j] = V[piv][j];
             V[piv][j] = t;
+            t = I[k][j];
+            I[k][j] = I[piv][j];
+            I[piv][j] = t;
         }
-        for (j = 2 * n - 1; j >= k; --j) V[k][j] /= V[k][k];
+        for (j = n - 1; j >= 0; --j) I[k][j] /= V[k][k];
+        for (j = n - 1; j >= k; --j) V[k][j] /= V[k][k];
         for (r = 0; r < n; ++r) {
             hrm_real f = V[r][k];
             if (r == k || f == 0) continue;
-            for (j = k; j < 2 * n; ++j) V[r][j] -= f * V[k][j];
+            for (j = k; j < n; ++j) V[r][j] -= f * V[k][j];
+            for (j = 0; j < n; ++j) I[r][j] -= f * I[k][j];
         }
     }
-    for (k = 0; k < n; ++k)
-        for (j = 0; j < n; ++j) F->A[k][j] = V[k][n + j];
 }
 
 /* s_k = exp(-b) i_k(b), k = 0..n-1, b >= 0 (i_k the modified spherical
@@ -4443,14 +4467,16 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE int hrm__rk_quad(hrm__ctx *c, const hr
     return endj >= 0;
 }
 
-static HRM_DEVICE HRM__CALL HRM__NOINLINE int hrm__rk_stages(hrm__ctx *c, const hrm__tableau *tb, const hrm__pt *start,
+/* The stage form of a step: each stage's derivative from the stage sum
+   of those before it. pts and k: a point and a derivative per stage
+   (tb->s of each, in the caller's frame: hrm__rk_stages). */
+static HRM_DEVICE HRM__CALL int hrm__rk_stages_in(hrm__ctx *c, const hrm__tableau *tb, const hrm__pt *start,
                         hrm__pt *end, hrm_real p, hrm_real p_end,
                         const hrm_real *y, hrm_real *ynew, hrm_real *err,
-                        const hrm__nodes_info *ni, hrm_real *both)
+                        const hrm__nodes_info *ni, hrm_real *both, hrm__pt *pts, hrm_real (*k)[HRM__NY])
 {
-    hrm__pt pts[HRM__MAX_STAGES];
     const hrm__pt *sp[HRM__MAX_STAGES];
-    hrm_real k[HRM__MAX_STAGES][HRM__NY], Y[HRM__NY];
+    hrm_real Y[HRM__NY];
     hrm_real h = p_end - p;
     int i, j, n, end_stage = -1;
 
@@ -4527,14 +4553,76 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE int hrm__rk_stages(hrm__ctx *c, const 
     return end_stage >= 0;
 }
 
+/* The stages' storage in a frame of its own, sized for the tableau: the
+   largest's, or that of one of at most 4 stages (Euler, RK4 and so
+   Adams-Bashforth's start, Bogacki-Shampine), half of it. */
+#define HRM__FEW_STAGES 4
+static HRM_DEVICE HRM__NOINLINE int hrm__rk_stages(hrm__ctx *c, const hrm__tableau *tb, const hrm__pt *start,
+                                                   hrm__pt *end, hrm_real p, hrm_real p_end, const hrm_real *y,
+                                                   hrm_real *ynew, hrm_real *err, const hrm__nodes_info *ni,
+                                                   hrm_real *both)
+{
+    hrm__pt pts[HRM__MAX_STAGES];
+    hrm_real k[HRM__MAX_STAGES][HRM__NY];
+    return hrm__rk_stages_in(c, tb, start, end, p, p_end, y, ynew, err, ni, both, pts, k);
+}
+
+static HRM_DEVICE HRM__NOINLINE int hrm__rk_stages_few(hrm__ctx *c, const hrm__tableau *tb, const hrm__pt *start,
+                                                       hrm__pt *end, hrm_real p, hrm_real p_end, const hrm_real *y,
+                                                       hrm_real *ynew, hrm_real *err, const hrm__nodes_info *ni,
+                                                       hrm_real *both)
+{
+    hrm__pt pts[HRM__FEW_STAGES];
+    hrm_real k[HRM__FEW_STAGES][HRM__NY];
+    HRM_ASSERT(tb->s <= HRM__FEW_STAGES);
+    return hrm__rk_stages_in(c, tb, start, end, p, p_end, y, ynew, err, ni, both, pts, k);
+}
+
+/* hrm__rk_quad for a fixed step (no error estimate) without a fit: no
+   node is read again but the step's end, so the nodes inside are
+   evaluated in turn into one point and the end into *end (the same sums
+   in the same order). */
+static HRM_DEVICE HRM__CALL HRM__NOINLINE int hrm__rk_quad_fixed(hrm__ctx *c, const hrm__nodes_info *ni,
+                                                                const hrm__pt *start, hrm__pt *end, hrm_real p,
+                                                                hrm_real p_end, const hrm_real *y, hrm_real *ynew)
+{
+    hrm__pt pt;
+    hrm_real f[HRM__MAX_STAGES][HRM__CH], h = p_end - p;
+    int i, j, have_end = 0;
+    for (j = 0; j < ni->m; ++j) {
+        const hrm__pt *q = start;
+        hrm_real cj = ni->c[j];
+        if (cj != 0) {
+            hrm__pt *at = cj == 1 ? end : &pt;
+            hrm__eval(c, cj == 1 ? p_end : p + cj * h, at);
+            q = at;
+            if (cj == 1) have_end = 1;
+        }
+        for (i = 0; i < HRM__CH; ++i) f[j][i] = q->tr[i] * q->gq[i];
+    }
+    for (i = 0; i < HRM__CH; ++i) {
+        hrm_real acc = 0;
+        for (j = 0; j < ni->m; ++j) acc += ni->bw[j] * f[j][i];
+        ynew[i] = y[i];
+        ynew[HRM__CH + i] = y[HRM__CH + i];
+        hrm__sum(&ynew[HRM__CH + i], &c->ksum[HRM__CH + i], h * acc);
+    }
+    return have_end;
+}
+
 /* One step: its quadrature form where the step needs no stage sums (the
    optical-depth form, tau not coupled), else its stages; each in a frame
-   of its own, so that the one not taken reserves no stack. */
+   of its own, so that the one not taken reserves no stack (a fixed step
+   without a fit, the most common, holds one node instead of the largest
+   tableau's). */
 static HRM_DEVICE int hrm__rk_step(hrm__ctx *c, const hrm__tableau *tb, const hrm__pt *start, hrm__pt *end,
                                    hrm_real p, hrm_real p_end, const hrm_real *y, hrm_real *ynew, hrm_real *err,
                                    const hrm__nodes_info *ni, hrm_real *both)
 {
+    if (!c->rte && !c->coupled && !err && !c->expo)
+        return hrm__rk_quad_fixed(c, ni, start, end, p, p_end, y, ynew);
     if (!c->rte && !c->coupled) return hrm__rk_quad(c, ni, start, end, p, p_end, y, ynew, err, both);
+    if (tb->s <= HRM__FEW_STAGES) return hrm__rk_stages_few(c, tb, start, end, p, p_end, y, ynew, err, ni, both);
     return hrm__rk_stages(c, tb, start, end, p, p_end, y, ynew, err, ni, both);
 }
 
@@ -6028,7 +6116,10 @@ HRM__DEF HRM_DEVICE hrm_options hrm_default_options(hrm_method method)
                               one, or in a GPU kernel, where memory no two
                               threads share is slower than their stacks,
                               the solve's own frame) */
-#define HRM__NEEDS 7
+#define HRM__NEED_PIECES 128u /* the tables of the pieces between
+                                breakpoints: a workspace's only (without
+                                one, hrm__solve_broken's own frame) */
+#define HRM__NEEDS 8
 #ifdef __CUDA_ARCH__
 #define HRM__CTX_NEED 0u
 #else
@@ -6042,7 +6133,7 @@ static HRM_DEVICE size_t hrm__need_bytes(int k)
     static const size_t bytes[HRM__NEEDS] = {sizeof(hrm__tau), sizeof(hrm__memo) * (HRM__MEMO + 1),
                                              sizeof(hrm__efit) * 2, sizeof(hrm__ns_store),
                                              sizeof(hrm__gk_store), sizeof(hrm__ns_iv) * (HRM_MAX_DEPTH + 1),
-                                             sizeof(hrm__ctx)};
+                                             sizeof(hrm__ctx), sizeof(hrm__piece_tab)};
     return (bytes[k] + 15) / 16 * 16;
 }
 
@@ -6052,7 +6143,7 @@ static HRM_DEVICE size_t hrm__need_bytes(int k)
 static HRM_DEVICE unsigned hrm__may_need(const hrm_options *o)
 {
     int d = hrm__driver(o);
-    return HRM__NEED_LAYER | HRM__CTX_NEED | (hrm__is_adaptive(o->method) ? HRM__NEED_MEMO : 0u) |
+    return HRM__NEED_LAYER | HRM__CTX_NEED | HRM__NEED_PIECES | (hrm__is_adaptive(o->method) ? HRM__NEED_MEMO : 0u) |
            (o->exponential ? HRM__NEED_EFIT : 0u) | (d == HRM__DRV_NS ? HRM__NEED_NS | HRM__NEED_FINISH : 0u) |
            (d == HRM__DRV_GK ? HRM__NEED_GK : 0u);
 }
@@ -6533,16 +6624,15 @@ static HRM_DEVICE hrm_real hrm__share(int steps, hrm_real a, hrm_real b, hrm_rea
     return !(r >= 0) ? 0 : r > (hrm_real)steps ? (hrm_real)steps : r;
 }
 
-/* The pieces between breakpoints, each solved on its own; the tables of
-   their ends in a frame of its own, which a ray without breakpoints never
-   holds. */
-static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__solve_broken(hrm__ctx *c, const hrm_options *o,
-                                                                 hrm_real y[HRM__NY])
+/* The pieces between breakpoints, each solved on its own, with their
+   tables in t (the caller's workspace, or hrm__solve_broken's frame). */
+static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__solve_broken_in(hrm__ctx *c, const hrm_options *o,
+                                                                    hrm_real y[HRM__NY], hrm__piece_tab *t)
 {
     const hrm__method_info *mi = &hrm__methods[o->method];
-    hrm_real P[HRM_MAX_BREAKS + 2], pa = c->pa, pb = c->pb;
+    hrm_real *P = t->P, pa = c->pa, pb = c->pb;
     hrm_real yk[HRM__NY], err[HRM__CH], acc[HRM__CH];
-    int n = c->nbrk + 1, N[HRM_MAX_BREAKS + 1], k, i, fixed;
+    int n = c->nbrk + 1, *N = t->N, k, i, fixed;
     long max_evals = c->max_evals;
 
     P[0] = pa;
@@ -6616,6 +6706,21 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__solve_broken(hrm__ctx *c, co
     c->pb = pb;
     c->s_lo = -HRM__R(HUGE_VAL);
     c->s_hi = HRM__R(HUGE_VAL);
+}
+
+/* The tables in a frame of their own without a workspace, which a ray
+   without breakpoints never holds. */
+static HRM_DEVICE HRM__NOINLINE void hrm__solve_broken_on_stack(hrm__ctx *c, const hrm_options *o,
+                                                               hrm_real y[HRM__NY])
+{
+    hrm__piece_tab t;
+    hrm__solve_broken_in(c, o, y, &t);
+}
+
+static HRM_DEVICE void hrm__solve_broken(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM__NY])
+{
+    if (c->pieces) hrm__solve_broken_in(c, o, y, c->pieces);
+    else hrm__solve_broken_on_stack(c, o, y);
 }
 
 /* The source S (per unit length) in every channel at parameter p, and the
@@ -7213,7 +7318,7 @@ static HRM_DEVICE unsigned hrm__needs(const hrm_medium *m, const hrm_options *o,
         need |= HRM__NEED_LAYER;
     if (hrm__is_adaptive(o->method)) need |= HRM__NEED_MEMO;
     if (o->exponential && hrm__tau_closed(src)) need |= HRM__NEED_EFIT;
-    need |= HRM__CTX_NEED;
+    need |= HRM__CTX_NEED | HRM__NEED_PIECES;
     /* the drivers run where there is a source or tau comes from their
        nodes (not for Tr alone from the layer or a closed form) */
     if (!estimator && (le || li || !hrm__tau_closed(src)))
@@ -7278,6 +7383,7 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE hrm_status hrm__solve_job(hrm__job *j,
     c->ns = (hrm__ns_store *)j->at[3];
     c->gks = (hrm__gk_store *)j->at[4];
     c->finish = (hrm__ns_iv *)j->at[5];
+    c->pieces = (hrm__piece_tab *)j->at[7];
     st = hrm__setup(c, (hrm__tau *)j->at[0], (hrm__memo *)j->at[1], (hrm__efit *)j->at[2], m, j->t0, t1,
                     o, j->tr_only);
     *j->stats = c->stats;
@@ -7339,7 +7445,8 @@ static HRM_DEVICE hrm_status hrm__stage(hrm__job *j)
     if (j->need & HRM__NEED_EFIT) return hrm__with_efit(j);
     if (j->need & HRM__NEED_NS) return hrm__with_ns(j);
     if (j->need & HRM__NEED_GK) return hrm__with_gk(j);
-    /* (HRM__NEED_FINISH without a workspace: hrm__ns_local) */
+    /* (HRM__NEED_FINISH and HRM__NEED_PIECES without a workspace:
+       hrm__ns_local, hrm__solve_broken) */
     return j->at[6] ? hrm__solve_job(j, (hrm__ctx *)j->at[6]) : hrm__solve_local(j);
 }
 
@@ -7381,7 +7488,7 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__run(const hrm_medium *m, hrm_real t0
     j.jumps = jumps;
     j.need = hrm__needs(m, &j.o, tr_only, j.estimator, t1);
     j.ws = (unsigned char *)j.o.workspace;
-    if (!j.ws) j.need &= ~(HRM__NEED_FINISH | HRM__NEED_CTX);
+    if (!j.ws) j.need &= ~(HRM__NEED_FINISH | HRM__NEED_CTX | HRM__NEED_PIECES);
     return hrm__stage(&j);
 }
 
