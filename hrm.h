@@ -4378,7 +4378,9 @@ static HRM_DEVICE HRM__CALL void hrm__rk_exp_miss(const hrm__nodes_info *ni, con
 }
 
 /* The quadrature form of a step (see hrm__nodes_info): the distinct nodes
-   in ascending order, L' = Tr S at each, no stage sums. */
+   in ascending order, L' = Tr S at each, no stage sums. An adaptive step
+   (err), or a fixed one with a fit; a fixed step without one takes
+   hrm__rk_quad_fixed. */
 static HRM_DEVICE HRM__CALL HRM__NOINLINE int hrm__rk_quad(hrm__ctx *c, const hrm__nodes_info *ni, const hrm__pt *start,
                         hrm__pt *end, hrm_real p, hrm_real p_end, const hrm_real *y,
                         hrm_real *ynew, hrm_real *err, hrm_real *both)
@@ -4438,23 +4440,20 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE int hrm__rk_quad(hrm__ctx *c, const hr
         if (endj >= 0) *end = pn[endj];
         return endj >= 0;
     }
+    HRM_ASSERT(err);
     for (i = 0; i < HRM__CH; ++i) {
         hrm_real acc = 0, eacc = 0;
         for (j = 0; j < ni->m; ++j) {
             acc += ni->bw[j] * f[j][i];
             eacc += ni->ew[j] * f[j][i];
         }
+        hrm_real e = h * eacc;
         ynew[i] = y[i];
-        ynew[HRM__CH + i] = y[HRM__CH + i];
-        if (err) ynew[HRM__CH + i] += h * acc;
-        else hrm__sum(&ynew[HRM__CH + i], &c->ksum[HRM__CH + i], h * acc); /* fixed steps */
-        if (err) {
-            hrm_real e = h * eacc;
-            err[i] = 0;
-            err[HRM__CH + i] = HRM_FABS(e) >= em[i] ? e : e < 0 ? -em[i] : em[i];
-        }
+        ynew[HRM__CH + i] = y[HRM__CH + i] + h * acc;
+        err[i] = 0;
+        err[HRM__CH + i] = HRM_FABS(e) >= em[i] ? e : e < 0 ? -em[i] : em[i];
     }
-    if (err && both) {
+    if (both) {
         memcpy(both, err, sizeof(hrm_real) * HRM__NY);
         for (i = 0; i < HRM__CH; ++i) {
             hrm_real d[HRM__MAX_STAGES], top;
