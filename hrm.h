@@ -402,11 +402,11 @@
    of t, made a breakpoint and the solve run again (three halvings that
    split a smooth change end the search). Every adaptive method (fixed-
    step ones with find_jumps 1) first scans sigma_t (callbacks, no
-   transmittance callback) at 33 points, or at medium.feature's spacing
-   (4097 at most): a factor 2 between neighbours is bisected, a jump or
-   edge made a breakpoint, a steep smooth change taught to the layer, as
-   is a sample 1/8 above or below both neighbours; the scan ends where its
-   tau passes 2 ln(64 / rtol). Located points: result.jumps (the next
+   transmittance callback) at 33 points (the layer's first panels'), or evenly
+   at medium.feature's spacing (4097 at most): a factor 2 between neighbours is
+   bisected, a jump or edge made a breakpoint, a steep smooth change taught to
+   the layer, as is a sample 1/8 above or below both neighbours; the scan ends
+   where its tau passes 2 ln(64 / rtol). Located points: result.jumps (the next
    pixel's breakpoints). -1: neither. Finer detail needs medium.feature.
 
    ==========================================================================
@@ -435,12 +435,12 @@
    HRM_TAU_DECOUPLED  (default: adaptive methods; fixed-step ones with a fit,
        or Simpson, RK4 and Adams-Bashforth under a warp) sigma_t on its own
        abscissae (Kulla and Fajardo 2012; Munoz 2014 s.6): panels in t,
-       Chebyshev interpolation of degree 8 then 16, each accepted when its
-       error of tau, weighted by Tr at its start, is at most tau_tol times
-       its increment of tau or 1/64, the larger; L's relative error from
-       tau stays below tau_tol (1 + K/64), K the panels thinner than 1/64.
-       tau_tol 0: rtol/8 (adaptive), 0.01 N^-order (fixed-step). A sample
-       the scan or a missed node saw is kept for every later march.
+       Chebyshev interpolation of degree 8 then 16 (the first 4 panels: 8 on
+       the scan's points), each accepted when its error of tau, weighted by Tr
+       at its start, is at most tau_tol times its increment of tau or 1/64, the
+       larger; L's relative error from tau stays below tau_tol (1 + K/64), K
+       the panels thinner than 1/64. tau_tol 0: rtol/8 (adaptive), 0.01
+       N^-order (fixed-step). What the scan or a missed node saw is kept.
    HRM_TAU_STREAM  (default: the rectangle rule, Monte Carlo and Euler under
        a warp) sigma_t at the nodes and at most 16 more points in t where
        the warp leaves them sparsest (2N + 8 samples; 2N + 17 for Simpson
@@ -1811,6 +1811,7 @@ HRM__STATIC_ASSERT(tau_panels_16_to_65536, HRM_TAU_PANELS >= 16 && HRM_TAU_PANEL
 #define HRM__TCACHE 8      /* panels whose coefficients are kept */
 #define HRM__TMEM 32       /* samples of rejected panels remembered */
 #define HRM__TCHECK 16     /* checkpoints of the march */
+#define HRM__SCAN 32       /* the medium scan's intervals (hrm__scan_medium) */
 
 typedef struct hrm__tpanel {
     hrm_real a, b;          /* offsets from t0 */
@@ -1861,6 +1862,12 @@ typedef struct hrm__tau {
     hrm_real mem_x[HRM__TMEM], mem_s[HRM__TMEM][HRM__CH];
     char mem_keep[HRM__TMEM];
     long hit;               /* the panel of the last hrm__tau_at */
+    /* The medium scan's samples (hrm__scan_at over [0, scan_end]), where
+       it took them (scan_have): the degree-8 samples of the 4 panels
+       that the march tries first (hrm__tau_scan_panel). */
+    hrm_real scan_end;
+    hrm_real scan_s[HRM__SCAN + 1][HRM__CH];
+    char scan_have[HRM__SCAN + 1];
 } hrm__tau;
 
 /* sigma_t at offset off from t0: one medium evaluation. */
@@ -2174,6 +2181,18 @@ static HRM_DEVICE hrm_real hrm__cheb_at(hrm_real a, hrm_real b, int j16)
     return j16 == 16 ? b : a + (b - a) * ((1 + hrm__cheb_T[1][j16]) / 2);
 }
 
+/* The medium scan's point k of n over [0, end]: at the default count
+   (HRM__SCAN) the Lobatto points of degree 8 of 4 equal panels, which
+   the transmittance layer's march tries first (hrm__tau_scan_panel);
+   else evenly spaced. */
+static HRM_DEVICE hrm_real hrm__scan_at(hrm_real end, int k, int n)
+{
+    int q = k / 8;
+    if (k >= n) return end;
+    if (n != HRM__SCAN) return end * ((hrm_real)k / (hrm_real)n);
+    return hrm__cheb_at(end * ((hrm_real)q / 4), q == 3 ? end : end * ((hrm_real)(q + 1) / 4), 2 * (k % 8));
+}
+
 /* Sample the panel [a, b] at degree n given f[.][0] (and, when have8, the
    degree-8 samples), fit every channel: dtau its increments, err its
    error estimates, worst the largest error over its share of tol. */
@@ -2275,6 +2294,7 @@ static HRM_DEVICE void hrm__tau_init(hrm__tau *L, hrm_real end, hrm_real tol)
     L->end = end;
     L->tol = tol;
     L->nmem = 0;
+    memset(L->scan_have, 0, sizeof L->scan_have);
     hrm__tau_rebuild(L);
 }
 
@@ -2375,19 +2395,41 @@ static HRM_DEVICE int hrm__tau_cp_before(const hrm__tau *L, hrm_real off)
     return k;
 }
 
+/* The medium scan's panel q (of 4) that starts at a, where the scan took
+   its 9 samples and no breakpoint lies inside; else -1. */
+static HRM_DEVICE int hrm__tau_scan_panel(const hrm__ctx *c, const hrm__tau *L, hrm_real a)
+{
+    int q, j, k;
+    for (q = 0; q < HRM__SCAN / 8; ++q) {
+        hrm_real b;
+        if (!L->scan_have[8 * q] || hrm__scan_at(L->scan_end, 8 * q, HRM__SCAN) != a) continue;
+        b = hrm__scan_at(L->scan_end, 8 * q + 8, HRM__SCAN);
+        for (j = 1; j <= 8; ++j)
+            if (!L->scan_have[8 * q + j]) return -1;
+        for (k = 0; k < c->nbrk; ++k)
+            if (c->brk_off[k] > a && c->brk_off[k] < b) return -1;
+        return b <= L->end ? q : -1;
+    }
+    return -1;
+}
+
 /* Accept one more panel after the last (the ray's first from t0), its
-   coefficients into co. */
+   coefficients into co. Where the medium scan's samples are the degree-8
+   samples of the panel that starts there (hrm__tau_scan_panel), that
+   panel is the first try, its degree 8 at no medium evaluation (a smooth
+   or constant medium's first panels cost nothing beyond the scan). */
 static HRM_DEVICE HRM__CALL void hrm__tau_march(hrm__ctx *c, hrm__tau *L, hrm__tcoef *co)
 {
     hrm_real f[HRM__CH][HRM__CHEB + 1], dtau[HRM__CH];
     hrm_real a = 0, tau_a[HRM__CH], h, res;
-    int i, n, k, failed = 0;
+    int i, j, n, k, failed = 0, q;
     long id = L->count;
 
     if (id == 0) {
         hrm_real big = 0;
         hrm__fill(tau_a, HRM__CH, 0);
-        hrm__sigma_t_at(c, 0, 0, L->sig_b);
+        if (L->scan_have[0]) memcpy(L->sig_b, L->scan_s[0], sizeof L->sig_b);
+        else hrm__sigma_t_at(c, 0, 0, L->sig_b);
         memcpy(L->sig0, L->sig_b, sizeof L->sig0);
         for (i = 0; i < HRM__CH; ++i) big = L->sig_b[i] > big ? L->sig_b[i] : big;
         /* start at 8 mean free paths of the densest channel, or the ray */
@@ -2414,20 +2456,28 @@ static HRM_DEVICE HRM__CALL void hrm__tau_march(hrm__ctx *c, hrm__tau *L, hrm__t
        accepted whatever its error. */
     res = 64 * HRM__EPS * (HRM_FABS(c->t0) + a) +
           HRM__TINY;
+    q = hrm__tau_scan_panel(c, L, a);
     for (;;) {
         hrm_real b, worst, fac;
-        int small = h < res && !failed, floor = !small && h <= res; /* floor: the last try */
-        if (floor) h = res;
-        b = a + h;
-        if (b > L->end || L->end - b < h / 8) b = L->end; /* no sliver */
-        for (k = 0; k < c->nbrk; ++k) /* no panel straddles a breakpoint */
-            if (c->brk_off[k] > a && (c->brk_off[k] < b || c->brk_off[k] - b < h / 8)) {
-                b = c->brk_off[k];
-                break;
-            }
-        for (i = 0; i < HRM__CH; ++i) f[i][0] = L->sig_b[i];
+        int small = h < res && !failed && q < 0, floor = !small && h <= res && q < 0; /* floor: the last try */
         n = 8;
-        worst = hrm__tau_fit(c, L, a, b, n, 0, tau_a, f, co, dtau);
+        if (q >= 0) {
+            b = hrm__scan_at(L->scan_end, 8 * q + 8, HRM__SCAN);
+            for (i = 0; i < HRM__CH; ++i)
+                for (j = 0; j <= 8; ++j) f[i][2 * j] = L->scan_s[8 * q + j][i];
+            worst = hrm__tau_fit(c, L, a, b, n, 1, tau_a, f, co, dtau);
+        } else {
+            if (floor) h = res;
+            b = a + h;
+            if (b > L->end || L->end - b < h / 8) b = L->end; /* no sliver */
+            for (k = 0; k < c->nbrk; ++k) /* no panel straddles a breakpoint */
+                if (c->brk_off[k] > a && (c->brk_off[k] < b || c->brk_off[k] - b < h / 8)) {
+                    b = c->brk_off[k];
+                    break;
+                }
+            for (i = 0; i < HRM__CH; ++i) f[i][0] = L->sig_b[i];
+            worst = hrm__tau_fit(c, L, a, b, n, 0, tau_a, f, co, dtau);
+        }
         /* degree 16 when degree 8 is near; hopeless panels shrink at once */
         if (worst > 1 && worst < HRM__R(1e6) && !floor) {
             n = 16;
@@ -2440,7 +2490,6 @@ static HRM_DEVICE HRM__CALL void hrm__tau_march(hrm__ctx *c, hrm__tau *L, hrm__t
             p->b = b;
             p->deg = n;
             for (i = 0; i < HRM__CH; ++i) {
-                int j;
                 p->tau_a[i] = tau_a[i];
                 p->tau_b[i] = tau_a[i] + dtau[i];
                 L->sig_b[i] = f[i][HRM__CHEB];
@@ -2459,6 +2508,7 @@ static HRM_DEVICE HRM__CALL void hrm__tau_march(hrm__ctx *c, hrm__tau *L, hrm__t
             return;
         }
         hrm__tau_remember(L, a, b, n, f);
+        q = -1;
         failed |= small;
         h = (b - a) * (fac < HRM__R(0.125) ? HRM__R(0.125) : fac > HRM__R(0.5) ? HRM__R(0.5) : fac);
     }
@@ -6866,14 +6916,20 @@ static HRM_DEVICE HRM__CALL int hrm__locate_sigma_jump(hrm__ctx *c, hrm_real a, 
     }
     if (smooth >= 3 || c->status != HRM_OK) return 0;
     if (!(HRM_FABS(fb - fa) > HRM__R(0.01) * (fa > fb ? fa : fb))) return 0;
-    *off = a / 2 + b / 2;
+    /* an edge at the bracket's end inside the medium: the piece beyond is
+       smooth from its start, and the empty piece holds the kink within
+       4 ulps of its end (at its middle, a float ray had the kink on
+       either side by an ulp, and a pair descended to t's resolution at it) */
+    *off = !edge ? a / 2 + b / 2 : fa == 0 ? b : a;
     return 1;
 }
 
 /* The medium scan (options.find_jumps, sigma from callbacks): sigma_t at
-   nscan + 1 evenly spaced offsets (HRM__SCAN, or as many as the medium's
-   feature asks for, at most HRM__SCAN_MAX; and both sides of each
-   breakpoint);
+   nscan + 1 offsets (hrm__scan_at: by default HRM__SCAN, the degree-8
+   Lobatto points of 4 equal panels, kept for the transmittance layer,
+   whose march tries those panels first on them; as many as the medium's
+   feature asks for, evenly spaced, at most HRM__SCAN_MAX; and both sides
+   of each breakpoint);
    where neighbours differ by a factor 2 or more the jump between them is
    located and made a breakpoint before the method runs, so that a slab or
    a bounding box is integrated at each piece's order by every method and
@@ -6901,14 +6957,13 @@ static HRM_DEVICE HRM__CALL int hrm__locate_sigma_jump(hrm__ctx *c, hrm_real a, 
    behind that no jump moves L by a share of rtol, and the layer and the
    rules, which still cover the rest, spend little there (a cloud's core:
    a quarter of a camera ray's lookups saved). */
-#define HRM__SCAN 32
 #define HRM__SCAN_MAX 4096
 static HRM_DEVICE HRM__CALL void hrm__scan_medium(hrm__ctx *c)
 {
     hrm_real sa[HRM__CH], sx[HRM__CH];
     hrm_real a = 0, fa = hrm__sigma_sum(c, 0, 0, sa), tau[HRM__CH], least;
     hrm_real deep = 2 * HRM_LOG(64 / c->rtol);
-    int k = 1, b = 0, i, nscan = HRM__SCAN, prev = 0;
+    int k = 1, b = 0, i, nscan = HRM__SCAN, prev = 0, keep;
     hrm_real fp = 0;
     hrm__fill(tau, HRM__CH, 0);
     if (c->m->feature > 0) {
@@ -6916,10 +6971,16 @@ static HRM_DEVICE HRM__CALL void hrm__scan_medium(hrm__ctx *c)
         hrm_real n = c->off_end / c->m->feature;
         if (n > HRM__SCAN) nscan = n >= HRM__SCAN_MAX ? HRM__SCAN_MAX : (int)n + 1;
     }
+    /* the samples kept for the layer's first panels (the default count) */
+    keep = c->decoupled && nscan == HRM__SCAN && c->tau->end == c->off_end;
+    if (keep) {
+        c->tau->scan_end = c->off_end;
+        memcpy(c->tau->scan_s[0], sa, sizeof sa);
+        c->tau->scan_have[0] = 1;
+    }
     while (a < c->off_end && c->status == HRM_OK) {
-        hrm_real grid = c->off_end * ((hrm_real)k / (hrm_real)nscan), x, fx, at;
-        int is_brk;
-        if (k >= nscan) grid = c->off_end;
+        hrm_real grid = hrm__scan_at(c->off_end, k, nscan), x, fx, at;
+        int is_brk, gk = k;
         /* the next point: a grid point or a breakpoint, whichever is first */
         while (b < c->nbrk && c->brk_off[b] <= a) ++b;
         is_brk = b < c->nbrk && c->brk_off[b] <= grid;
@@ -6927,6 +6988,10 @@ static HRM_DEVICE HRM__CALL void hrm__scan_medium(hrm__ctx *c)
         if (!is_brk) ++k;
         if (!(x > a)) continue;
         fx = hrm__sigma_sum(c, x, -1, sx);
+        if (keep && !is_brk) {
+            memcpy(c->tau->scan_s[gk], sx, sizeof sx);
+            c->tau->scan_have[gk] = 1;
+        }
         for (i = 0, least = HRM__R(HUGE_VAL); i < HRM__CH; ++i) {
             tau[i] += (x - a) * (sa[i] / 2 + sx[i] / 2);
             least = tau[i] < least ? tau[i] : least;
