@@ -345,6 +345,69 @@ static void tr_constant_cost(void)
     if (verbose()) NOTE("constant medium: source evaluations with callbacks / constants at most %.2f", worst);
 }
 
+/* 1c. The medium scan's 33 samples are the degree-8 points of the
+   transmittance layer's first 4 panels, which its march fits on them
+   before it samples anything itself. A constant sigma_t through callbacks
+   (the panels exact), and a slow wave (sigma_t 0.6 (1 + 0.3 sin(0.3 s)),
+   which degree 8 over a quarter of the ray fits to about 1e-9 of tau):
+   a solve costs its source evaluations plus the scan's 33 abscissae, the
+   layer none of its own (its own first panel had cost 9 more while the
+   scan's samples were only looked at: evals + 42). Every adaptive method,
+   no warp and the equiangular warp, rtol 1e-2, 1e-3, 1e-4 (float: 100
+   times); where HRM_OK, L within 3 rtol of constants' (the constant
+   medium) or of the Gauss-Legendre reference (the wave). */
+static void tr_scan_panels(void)
+{
+    int kind, mi, w, ir, c;
+    long worst = 0;
+    for (kind = 0; kind < 2; ++kind)
+        for (mi = 0; mi < TR_NMETHODS; ++mi)
+            for (w = 0; w < 2; ++w)
+                for (ir = 0; ir < 3; ++ir) {
+                    hrm_method m = tr_methods[mi];
+                    double rtol = pow(10, -2 - ir) * (real_is_float() ? 100 : 1), ref[NCH];
+                    tr_medium p;
+                    hrm_options o;
+                    hrm_medium ms, mc;
+                    hrm_result rs, rc;
+                    hrm_status st;
+                    long extra;
+                    if (!tr_adaptive(m)) continue;
+                    tr_constant(&p, 0.2);
+                    if (kind) {
+                        p.amp = 0.3;
+                        p.w = 0.3;
+                    }
+                    o = tr_options(m, 0, rtol, w, &p);
+                    ms = tr_make(&p, 0, 0);
+                    p.n_sigma = 0;
+                    st = hrm_solve(&ms, 0, 10, &o, &rs);
+                    CHECK(st >= 0, "%s, %s warp %s rtol %g: status %s", kind ? "wave" : "constant",
+                          hrm_method_name(m), tr_warp_names[w], rtol, hrm_status_string(st));
+                    extra = rs.stats.medium_evals - rs.stats.evals;
+                    worst = extra > worst ? extra : worst;
+                    CHECK(rs.stats.medium_evals == p.n_sigma && extra >= 0 && extra <= 33,
+                          "%s, %s warp %s rtol %g: %ld medium evaluations (%ld sigma abscissae) for %ld "
+                          "source evaluations, at most 33 more",
+                          kind ? "wave" : "constant", hrm_method_name(m), tr_warp_names[w], rtol,
+                          rs.stats.medium_evals, p.n_sigma, rs.stats.evals);
+                    if (st != HRM_OK) continue;
+                    if (kind) {
+                        for (c = 0; c < NCH; ++c) ref[c] = tr_reference(&p, c, 0, 10);
+                    } else {
+                        mc = tr_make(&p, 1, 0);
+                        CHECK_INT(hrm_solve(&mc, 0, 10, &o, &rc), HRM_OK, "constant, %s warp %s rtol %g: constants",
+                                  hrm_method_name(m), tr_warp_names[w], rtol);
+                        for (c = 0; c < NCH; ++c) ref[c] = (double)rc.L[c];
+                    }
+                    for (c = 0; c < NCH; ++c)
+                        CHECK_NEAR((double)rs.L[c], ref[c], 3 * rtol * fabs(ref[c]),
+                                   "%s, %s warp %s rtol %g: L within 3 rtol", kind ? "wave" : "constant",
+                                   hrm_method_name(m), tr_warp_names[w], rtol);
+                }
+    if (verbose()) NOTE("scan panels: at most %ld medium evaluations beyond the source's", worst);
+}
+
 /* 2. tau in a heterogeneous medium (sigma_t within +-50% of its mean)
    under the equiangular warp, as each method takes it by default (the
    layer; the stream for the rectangle rule, Monte Carlo and Euler) and,
@@ -1729,6 +1792,7 @@ void transmittance_tests(void)
 {
     RUN_GROUP(tr_constant_sigma);
     RUN_GROUP(tr_constant_cost);
+    RUN_GROUP(tr_scan_panels);
     RUN_GROUP(tr_stream_counts);
     RUN_GROUP(tr_decoupled_vs_exact);
     RUN_GROUP(tr_transmittance_layer);
