@@ -264,15 +264,15 @@
    are thread-safe and re-entrant: an Li callback may call hrm_transmittance
    (or hrm_solve) for its shadow ray. Randomness (Monte Carlo, jitter) comes
    from options.seed alone: the same inputs give the same answer.
-   Stack (tests/stack.c, worst over every variant, double, 3 channels, gcc
-   and clang -O2): fixed-step methods 7-11 KiB on constants, 33 at most
-   (the transmittance layer: 18); the pairs 14 and 40; Gauss-Kronrod 92,
-   nested Simpson 120; the shadow-ray estimator 8; about 2.2 times that with
-   8 channels, half in float, at most (48 + 48 HRM_CHANNELS) KiB; twice
-   with a shadow ray solved inside Li. options.workspace (hrm_workspace_size
-   bytes, aligned to 16, one a thread) holds the layer, adaptive storage and
-   context instead, answers bit-identical: fixed-step methods 7.5 KiB of
-   stack at most, every method 18, 33 with a nested shadow ray.
+   Stack (tests/stack.c: the worst variant, double, 3 channels, gcc, clang
+   -O2): fixed-step methods 7-11 KiB on constants, 24 at most (the
+   transmittance layer 10: a table of 32 panels); the pairs 14 and 29;
+   Gauss-Kronrod 86, nested Simpson 115; the shadow-ray estimator 8; about 2.2
+   times that with 8 channels, half in float, at most (48 + 48 HRM_CHANNELS)
+   KiB; twice with a shadow ray solved inside Li. options.workspace
+   (hrm_workspace_size bytes, aligned to 16, one a thread) holds the layer (128
+   panels), adaptive storage and context instead, same answers: fixed-step
+   methods 7.5 KiB of stack, every method 18, 33 with a nested shadow ray.
    GPU kernels: under nvcc or hipcc every function is __host__ __device__
    (HRM_DEVICE; define it to override) and the tables exist on both sides.
    Build the medium in the kernel (callbacks: device functions), give each
@@ -1807,6 +1807,11 @@ static HRM_DEVICE hrm_real hrm__uniform(uint64_t *state)
                               marching again from a checkpoint */
 #endif
 HRM__STATIC_ASSERT(tau_panels_16_to_65536, HRM_TAU_PANELS >= 16 && HRM_TAU_PANELS <= 65536);
+/* Without a workspace the table is 32 panels (on the stack): the panels
+   past it are marched again from a checkpoint when asked for, to the same
+   values, so that answers do not depend on the table's size, only the
+   medium evaluations do. */
+#define HRM__TAU_STACK (HRM_TAU_PANELS < 32 ? HRM_TAU_PANELS : 32)
 #define HRM__CHEB 16       /* the highest degree of a panel */
 #define HRM__TCACHE 8      /* panels whose coefficients are kept */
 #define HRM__TMEM 32       /* samples of rejected panels remembered */
@@ -1836,7 +1841,9 @@ typedef struct hrm__tcheck {
 } hrm__tcheck;
 
 typedef struct hrm__tau {
-    hrm__tpanel tab[HRM_TAU_PANELS]; /* panel i at tab[i % HRM_TAU_PANELS] */
+    hrm__tpanel *tab;       /* panel i at tab[i % ntab] (HRM_TAU_PANELS in a
+                               workspace, HRM__TAU_STACK in a frame) */
+    long ntab;
     long count;             /* panels accepted so far */
     long base;              /* the first panel marched since the last start */
     hrm_real base_a, base_tau[HRM__CH]; /* where that march started */
@@ -1869,6 +1876,7 @@ typedef struct hrm__tau {
     hrm_real scan_s[HRM__SCAN + 1][HRM__CH];
     char scan_have[HRM__SCAN + 1];
 } hrm__tau;
+#define HRM__TAU_HEAD ((sizeof(hrm__tau) + 15) / 16 * 16) /* its table after it */
 
 /* sigma_t at offset off from t0: one medium evaluation. */
 static HRM_DEVICE void hrm__sigma_t_at(hrm__ctx *c, hrm_real off, int side, hrm_real st[HRM__CH])
@@ -2281,7 +2289,7 @@ static HRM_DEVICE void hrm__tau_rebuild(hrm__tau *L)
     L->count = 0;
     L->base = 0;
     L->ncp = 0;
-    L->cp_every = HRM_TAU_PANELS / 4;
+    L->cp_every = L->ntab / 4;
     L->next_h = 0;
     L->hit = 0; /* (read, guarded, before the first hrm__tau_at: UB on an
                    uninitialized stack) */
@@ -2370,7 +2378,7 @@ static HRM_DEVICE void hrm__tau_checkpoint(hrm__tau *L, long id, hrm_real a)
     q->id = id;
     q->a = a;
     q->h = L->next_h;
-    memcpy(q->tau, L->tab[(id - 1) % HRM_TAU_PANELS].tau_b, sizeof q->tau);
+    memcpy(q->tau, L->tab[(id - 1) % L->ntab].tau_b, sizeof q->tau);
     memcpy(q->sig, L->sig_b, sizeof q->sig);
 }
 
@@ -2440,7 +2448,7 @@ static HRM_DEVICE HRM__CALL void hrm__tau_march(hrm__ctx *c, hrm__tau *L, hrm__t
         h = L->next_h;
         if (hrm__is_break(c, a)) hrm__sigma_t_at(c, a, 1, L->sig_b);
     } else {
-        const hrm__tpanel *p = &L->tab[(id - 1) % HRM_TAU_PANELS];
+        const hrm__tpanel *p = &L->tab[(id - 1) % L->ntab];
         a = p->b;
         memcpy(tau_a, p->tau_b, sizeof tau_a);
         h = L->next_h;
@@ -2485,7 +2493,7 @@ static HRM_DEVICE HRM__CALL void hrm__tau_march(hrm__ctx *c, hrm__tau *L, hrm__t
         }
         fac = worst > 0 ? HRM__R(0.8) * HRM_POW(worst, -HRM__R(1) / (hrm_real)(n + 1)) : 4;
         if (worst <= 1 || floor || c->status != HRM_OK) {
-            hrm__tpanel *p = &L->tab[id % HRM_TAU_PANELS];
+            hrm__tpanel *p = &L->tab[id % L->ntab];
             p->a = a;
             p->b = b;
             p->deg = n;
@@ -2519,7 +2527,7 @@ static HRM_DEVICE HRM__CALL void hrm__tau_march(hrm__ctx *c, hrm__tau *L, hrm__t
    frame of its own, which the march to a new panel does not hold. */
 static HRM_DEVICE HRM__CALL HRM__NOINLINE hrm__tcoef *hrm__tau_refit(hrm__ctx *c, hrm__tau *L, long lo)
 {
-    const hrm__tpanel *p = &L->tab[lo % HRM_TAU_PANELS];
+    const hrm__tpanel *p = &L->tab[lo % L->ntab];
     hrm_real f[HRM__CH][HRM__CHEB + 1], dtau[HRM__CH], v[HRM__CH];
     hrm__tcoef *co = hrm__tcache_slot(L);
     int i;
@@ -2551,23 +2559,23 @@ static HRM_DEVICE HRM__CALL void hrm__tau_at(hrm__ctx *c, hrm__tau *L, hrm_real 
     if (off > L->end) off = L->end;
     /* Past the last panel: march on, from the farthest checkpoint before
        off if it is ahead. */
-    if (L->count > 0 && off > L->tab[(L->count - 1) % HRM_TAU_PANELS].b) {
+    if (L->count > 0 && off > L->tab[(L->count - 1) % L->ntab].b) {
         int k = hrm__tau_cp_before(L, off);
         if (k >= 0 && L->cp[k].id > L->count) hrm__tau_from(L, k);
     }
     while (L->count == 0 || L->count == L->base ||
-           off > L->tab[(L->count - 1) % HRM_TAU_PANELS].b) {
+           off > L->tab[(L->count - 1) % L->ntab].b) {
         hrm__tau_march(c, L, hrm__tcache_slot(L));
         if (c->status != HRM_OK) return;
     }
-    lo = L->count > HRM_TAU_PANELS ? L->count - HRM_TAU_PANELS : 0;
+    lo = L->count > L->ntab ? L->count - L->ntab : 0;
     if (lo < L->base) lo = L->base;
     hi = L->count - 1;
     co = &L->cache[L->last];
-    if (co->id >= lo && off > L->tab[co->id % HRM_TAU_PANELS].a &&
-        off <= L->tab[co->id % HRM_TAU_PANELS].b)
+    if (co->id >= lo && off > L->tab[co->id % L->ntab].a &&
+        off <= L->tab[co->id % L->ntab].b)
         lo = hi = co->id; /* the panel asked last: a march's next node */
-    if (off < L->tab[lo % HRM_TAU_PANELS].a) {
+    if (off < L->tab[lo % L->ntab].a) {
         /* forgotten: march again, from the nearest checkpoint before off
            (or t0) */
         int k = hrm__tau_cp_before(L, off);
@@ -2584,10 +2592,10 @@ static HRM_DEVICE HRM__CALL void hrm__tau_at(hrm__ctx *c, hrm__tau *L, hrm_real 
     /* The panel holding off: the last one whose start is below it. */
     while (lo < hi) {
         long mid = lo + (hi - lo + 1) / 2;
-        if (L->tab[mid % HRM_TAU_PANELS].a < off) lo = mid;
+        if (L->tab[mid % L->ntab].a < off) lo = mid;
         else hi = mid - 1;
     }
-    p = &L->tab[lo % HRM_TAU_PANELS];
+    p = &L->tab[lo % L->ntab];
     L->hit = lo;
     co = &L->cache[L->last];
     if (co->id != lo) {
@@ -2778,7 +2786,7 @@ static HRM_DEVICE HRM__CALL void hrm__tau_reach(hrm__ctx *c, hrm_real reach, hrm
         for (k = 0; k < 4 * HRM_TAU_PANELS; ++k) {
             const hrm__tpanel *p;
             hrm__tau_march(c, L, hrm__tcache_slot(L));
-            p = &L->tab[(L->count - 1) % HRM_TAU_PANELS];
+            p = &L->tab[(L->count - 1) % L->ntab];
             for (i = 0, least = p->tau_b[0]; i < HRM__CH; ++i)
                 least = p->tau_b[i] < least ? p->tau_b[i] : least;
             *x = p->b;
@@ -3539,7 +3547,7 @@ static HRM_DEVICE void hrm__medium_at(hrm__ctx *c, hrm_real s, hrm_real s_raw, h
            unit ray: L 44 rtol off with HRM_OK if sigma_s alone is held
            against twice the samples); hrm__dispatch samples it there and
            solves again */
-        tp = &c->tau->tab[c->tau->hit % HRM_TAU_PANELS];
+        tp = &c->tau->tab[c->tau->hit % c->tau->ntab];
         /* (not at a breakpoint, whose sample is on the other panel's side) */
         for (i = 0; i < HRM__CH && c->tau->count > 0 && !c->layer_miss && s == s_raw; ++i) {
             hrm_real lower = st_known ? st[i] : sa[i] > ss[i] ? sa[i] : ss[i];
@@ -6179,7 +6187,8 @@ HRM__DEF HRM_DEVICE hrm_options hrm_default_options(hrm_method method)
    the caller's workspace, which holds them in this order). */
 static HRM_DEVICE size_t hrm__need_bytes(int k)
 {
-    static const size_t bytes[HRM__NEEDS] = {sizeof(hrm__tau), sizeof(hrm__memo) * (HRM__MEMO + 1),
+    static const size_t bytes[HRM__NEEDS] = {HRM__TAU_HEAD + sizeof(hrm__tpanel) * HRM_TAU_PANELS,
+                                             sizeof(hrm__memo) * (HRM__MEMO + 1),
                                              sizeof(hrm__efit) * 2, sizeof(hrm__ns_store),
                                              sizeof(hrm__gk_store), sizeof(hrm__ns_iv) * (HRM_MAX_DEPTH + 1),
                                              sizeof(hrm__ctx), sizeof(hrm__piece_tab)};
@@ -7396,6 +7405,9 @@ static HRM_DEVICE hrm_status hrm__stage(hrm__job *j);
 static HRM_DEVICE HRM__NOINLINE hrm_status hrm__with_layer(hrm__job *j)
 {
     hrm__tau layer;
+    hrm__tpanel tab[HRM__TAU_STACK];
+    layer.tab = tab;
+    layer.ntab = HRM__TAU_STACK;
     j->at[0] = &layer;
     j->need &= ~HRM__NEED_LAYER;
     return hrm__stage(j);
@@ -7500,6 +7512,12 @@ static HRM_DEVICE hrm_status hrm__stage(hrm__job *j)
         for (k = 0; k < HRM__NEEDS; ++k)
             if (j->need & (1u << k)) {
                 j->at[k] = j->ws;
+                if (k == 0) {
+                    /* the layer's table after it, whole */
+                    hrm__tau *L = (hrm__tau *)j->ws;
+                    L->tab = (hrm__tpanel *)(j->ws + HRM__TAU_HEAD);
+                    L->ntab = HRM_TAU_PANELS;
+                }
                 j->ws += hrm__need_bytes(k);
             }
         j->need = 0;

@@ -1003,6 +1003,24 @@ static void ad_ws_li(void *u, hrm_real t, hrm_real out[NCH])
     for (c = 0; c < NCH; ++c) out[c] = (hrm_real)v;
 }
 
+static void ad_ws_kink(void *u, hrm_real t, hrm_real sa[NCH], hrm_real ss[NCH])
+{
+    double v = sin(10 * (double)t);
+    int c;
+    (void)u;
+    for (c = 0; c < NCH; ++c) {
+        sa[c] = (hrm_real)(v > 0 ? 0.12 * v : 0);
+        ss[c] = (hrm_real)(v > 0 ? 0.18 * v : 0);
+    }
+}
+
+static void ad_ws_one(void *u, hrm_real t, hrm_real out[NCH])
+{
+    int c;
+    (void)u;
+    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)(1 + 0.5 * sin(0.3 * (double)t));
+}
+
 static int ad_ws_same(const hrm_result *a, const hrm_result *b)
 {
     int c, k, same = a->stats.evals == b->stats.evals && a->stats.medium_evals == b->stats.medium_evals &&
@@ -1087,6 +1105,42 @@ static void ad_workspace(void)
                             }
                         }
     CHECK(runs >= 300 && diff == 0, "workspace: %d solves identical to the stack's, %d differ", runs - diff, diff);
+    {
+        /* A ray of more transmittance panels than the stack's table holds
+           (32; a workspace's 128): sigma = 0.3 max(0, sin 10 t) over 20,
+           63 kinks, hundreds of panels, which the worst-first rules ask
+           for behind the march. The stack marches the forgotten ones again
+           from a checkpoint, to the same values: the same answer, evals
+           and steps; only the medium evaluations may differ (more on the
+           stack). */
+        static const hrm_method ms[3] = {HRM_NESTED_SIMPSON, HRM_GAUSS_KRONROD, HRM_DORMAND_PRINCE};
+        int k, c, re = 0;
+        for (k = 0; k < 3; ++k) {
+            hrm_medium m;
+            hrm_options o = hrm_default_options(ms[k]);
+            hrm_result plain, in_ws;
+            hrm_status s1, s2;
+            int same;
+            memset(&m, 0, sizeof m);
+            m.sigma = ad_ws_kink;
+            m.Li = ad_ws_one;
+            o.rtol = (hrm_real)(real_is_float() ? 1e-3 : 1e-5);
+            s1 = hrm_solve(&m, 0, 20, &o, &plain);
+            o.workspace = ws;
+            o.workspace_size = hrm_workspace_size(&o);
+            s2 = hrm_solve(&m, 0, 20, &o, &in_ws);
+            same = s1 == s2 && plain.stats.evals == in_ws.stats.evals && plain.stats.steps == in_ws.stats.steps &&
+                   plain.njumps == in_ws.njumps && plain.stats.medium_evals >= in_ws.stats.medium_evals;
+            for (c = 0; c < NCH; ++c)
+                same &= plain.L[c] == in_ws.L[c] && plain.Tr[c] == in_ws.Tr[c] && plain.error[c] == in_ws.error[c];
+            CHECK(s1 >= 0 && same, "kinked medium, %s: the stack's table (32 panels) and a workspace's give the same "
+                  "answer (status %d/%d, L %.17g/%.17g, evals %ld/%ld, medium evaluations %ld/%ld)",
+                  hrm_method_name(ms[k]), s1, s2, (double)plain.L[0], (double)in_ws.L[0], plain.stats.evals,
+                  in_ws.stats.evals, plain.stats.medium_evals, in_ws.stats.medium_evals);
+            re += plain.stats.medium_evals > in_ws.stats.medium_evals;
+        }
+        if (verbose()) NOTE("kinked medium: %d of 3 solves marched forgotten panels again on the stack", re);
+    }
     {
         /* the workspace is used, and not one byte past its size */
         hrm_medium m;
