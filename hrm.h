@@ -397,17 +397,17 @@
    (the first panels where nbreaks is 0): HRM_ERR_BAD_OPTION.
    Found jumps (find_jumps 0, the default): nested Simpson and global
    Gauss-Kronrod bisect on the source an interval that keeps 30% of its
-   parent's estimate three splits in a row, where refining on would cost
-   more than 64 evaluations; a jump of at least 1% is located to 4 ulps
-   of t, made a breakpoint and the solve run again (three halvings that
-   split a smooth change end the search). Every adaptive method (fixed-
-   step ones with find_jumps 1) first scans sigma_t (callbacks, no
-   transmittance callback) at 33 points (the layer's first panels'), or evenly
-   at medium.feature's spacing (4097 at most): a factor 2 between neighbours is
-   bisected, a jump or edge made a breakpoint, a steep smooth change taught to
-   the layer, as is a sample 1/8 above or below both neighbours; the scan ends
-   where its tau passes 2 ln(64 / rtol). Located points: result.jumps (the next
-   pixel's breakpoints). -1: neither. Finer detail needs medium.feature.
+   parent's estimate three splits in a row, where refining on would cost more
+   than 64 evaluations; a jump of at least 1% is located to 4 ulps of t, made a
+   breakpoint and the solve run again (three halvings that split a smooth
+   change end the search). Every adaptive method (fixed-step ones with
+   find_jumps 1) first scans sigma_t (callbacks, no transmittance callback) at
+   the layer's first panels' degree-8 points (33, one panel a piece at least),
+   or evenly at medium.feature's spacing (4097 at most): a factor 2 between
+   neighbours is bisected, a jump or edge made a breakpoint, a steep smooth
+   change or a sample 1/8 off both neighbours taught to the layer; the scan
+   ends where its tau passes 2 ln(64 / rtol). Located points: result.jumps (the
+   next pixel's breakpoints). -1: neither. Finer detail needs medium.feature.
 
    ==========================================================================
    EXPONENTIAL FITTING (options.exponential)
@@ -1817,6 +1817,7 @@ HRM__STATIC_ASSERT(tau_panels_16_to_65536, HRM_TAU_PANELS >= 16 && HRM_TAU_PANEL
 #define HRM__TMEM 32       /* samples of rejected panels remembered */
 #define HRM__TCHECK 16     /* checkpoints of the march */
 #define HRM__SCAN 32       /* the medium scan's intervals (hrm__scan_medium) */
+#define HRM__SCAN_Q 8      /* its panels at most (hrm__scan_layout) */
 
 typedef struct hrm__tpanel {
     hrm_real a, b;          /* offsets from t0 */
@@ -1869,12 +1870,16 @@ typedef struct hrm__tau {
     hrm_real mem_x[HRM__TMEM], mem_s[HRM__TMEM][HRM__CH];
     char mem_keep[HRM__TMEM];
     long hit;               /* the panel of the last hrm__tau_at */
-    /* The medium scan's samples (hrm__scan_at over [0, scan_end]), where
-       it took them (scan_have): the degree-8 samples of the 4 panels
+    /* The medium scan's panels (hrm__scan_layout: scan_q of them, ends
+       scan_b) and its samples at their degree-8 points (hrm__scan_at),
+       where it took them (scan_have; at a breakpoint the left side, and
+       the right side at a panel's start in scan_a, scan_ha): the panels
        that the march tries first (hrm__tau_scan_panel). */
-    hrm_real scan_end;
-    hrm_real scan_s[HRM__SCAN + 1][HRM__CH];
-    char scan_have[HRM__SCAN + 1];
+    int scan_q;
+    hrm_real scan_b[HRM__SCAN_Q + 1];
+    hrm_real scan_s[8 * HRM__SCAN_Q + 1][HRM__CH];
+    hrm_real scan_a[HRM__SCAN_Q][HRM__CH];
+    char scan_have[8 * HRM__SCAN_Q + 1], scan_ha[HRM__SCAN_Q];
 } hrm__tau;
 #define HRM__TAU_HEAD ((sizeof(hrm__tau) + 15) / 16 * 16) /* its table after it */
 
@@ -2189,16 +2194,15 @@ static HRM_DEVICE hrm_real hrm__cheb_at(hrm_real a, hrm_real b, int j16)
     return j16 == 16 ? b : a + (b - a) * ((1 + hrm__cheb_T[1][j16]) / 2);
 }
 
-/* The medium scan's point k of n over [0, end]: at the default count
-   (HRM__SCAN) the Lobatto points of degree 8 of 4 equal panels, which
-   the transmittance layer's march tries first (hrm__tau_scan_panel);
-   else evenly spaced. */
-static HRM_DEVICE hrm_real hrm__scan_at(hrm_real end, int k, int n)
+/* The medium scan's point k: of its panels' (nq of them, ends b) the
+   Lobatto points of degree 8, which the transmittance layer's march tries
+   first (hrm__tau_scan_panel); without panels (nq 0), n evenly spaced
+   intervals of [0, end]. */
+static HRM_DEVICE hrm_real hrm__scan_at(const hrm_real *b, int nq, hrm_real end, int k, int n)
 {
-    int q = k / 8;
-    if (k >= n) return end;
-    if (n != HRM__SCAN) return end * ((hrm_real)k / (hrm_real)n);
-    return hrm__cheb_at(end * ((hrm_real)q / 4), q == 3 ? end : end * ((hrm_real)(q + 1) / 4), 2 * (k % 8));
+    if (!nq) return k >= n ? end : end * ((hrm_real)k / (hrm_real)n);
+    if (k >= 8 * nq) return b[nq];
+    return hrm__cheb_at(b[k / 8], b[k / 8 + 1], 2 * (k % 8));
 }
 
 /* Sample the panel [a, b] at degree n given f[.][0] (and, when have8, the
@@ -2302,7 +2306,7 @@ static HRM_DEVICE void hrm__tau_init(hrm__tau *L, hrm_real end, hrm_real tol)
     L->end = end;
     L->tol = tol;
     L->nmem = 0;
-    memset(L->scan_have, 0, sizeof L->scan_have);
+    L->scan_q = 0;
     hrm__tau_rebuild(L);
 }
 
@@ -2403,19 +2407,20 @@ static HRM_DEVICE int hrm__tau_cp_before(const hrm__tau *L, hrm_real off)
     return k;
 }
 
-/* The medium scan's panel q (of 4) that starts at a, where the scan took
-   its 9 samples and no breakpoint lies inside; else -1. */
+/* The medium scan's panel q that starts at a, where the scan took its
+   samples (at a breakpoint, both sides of it) and no breakpoint lies
+   inside; else -1. */
 static HRM_DEVICE int hrm__tau_scan_panel(const hrm__ctx *c, const hrm__tau *L, hrm_real a)
 {
     int q, j, k;
-    for (q = 0; q < HRM__SCAN / 8; ++q) {
-        hrm_real b;
-        if (!L->scan_have[8 * q] || hrm__scan_at(L->scan_end, 8 * q, HRM__SCAN) != a) continue;
-        b = hrm__scan_at(L->scan_end, 8 * q + 8, HRM__SCAN);
+    for (q = 0; q < L->scan_q; ++q) {
+        hrm_real b = L->scan_b[q + 1];
+        if (L->scan_b[q] != a) continue;
         for (j = 1; j <= 8; ++j)
             if (!L->scan_have[8 * q + j]) return -1;
         for (k = 0; k < c->nbrk; ++k)
             if (c->brk_off[k] > a && c->brk_off[k] < b) return -1;
+        if (!(a > 0 ? hrm__is_break(c, a) ? L->scan_ha[q] : L->scan_have[8 * q] : L->scan_have[0])) return -1;
         return b <= L->end ? q : -1;
     }
     return -1;
@@ -2436,7 +2441,7 @@ static HRM_DEVICE HRM__CALL void hrm__tau_march(hrm__ctx *c, hrm__tau *L, hrm__t
     if (id == 0) {
         hrm_real big = 0;
         hrm__fill(tau_a, HRM__CH, 0);
-        if (L->scan_have[0]) memcpy(L->sig_b, L->scan_s[0], sizeof L->sig_b);
+        if (L->scan_q && L->scan_have[0]) memcpy(L->sig_b, L->scan_s[0], sizeof L->sig_b);
         else hrm__sigma_t_at(c, 0, 0, L->sig_b);
         memcpy(L->sig0, L->sig_b, sizeof L->sig0);
         for (i = 0; i < HRM__CH; ++i) big = L->sig_b[i] > big ? L->sig_b[i] : big;
@@ -2446,14 +2451,18 @@ static HRM_DEVICE HRM__CALL void hrm__tau_march(hrm__ctx *c, hrm__tau *L, hrm__t
         a = L->base_a;
         memcpy(tau_a, L->base_tau, sizeof tau_a);
         h = L->next_h;
-        if (hrm__is_break(c, a)) hrm__sigma_t_at(c, a, 1, L->sig_b);
     } else {
         const hrm__tpanel *p = &L->tab[(id - 1) % L->ntab];
         a = p->b;
         memcpy(tau_a, p->tau_b, sizeof tau_a);
         h = L->next_h;
-        /* past a breakpoint sigma_t may jump: its value on this side */
-        if (hrm__is_break(c, a)) hrm__sigma_t_at(c, a, 1, L->sig_b);
+    }
+    q = hrm__tau_scan_panel(c, L, a);
+    /* past a breakpoint sigma_t may jump: its value on this side (the
+       scan's, where it starts a panel of the scan) */
+    if (id > 0 && hrm__is_break(c, a)) {
+        if (q >= 0) memcpy(L->sig_b, L->scan_a[q], sizeof L->sig_b);
+        else hrm__sigma_t_at(c, a, 1, L->sig_b);
     }
     /* res: what t resolves near a. A trial below it is fitted at its own
        length: sigma_t there is what t resolves, which a constant fits,
@@ -2464,15 +2473,16 @@ static HRM_DEVICE HRM__CALL void hrm__tau_march(hrm__ctx *c, hrm__tau *L, hrm__t
        accepted whatever its error. */
     res = 64 * HRM__EPS * (HRM_FABS(c->t0) + a) +
           HRM__TINY;
-    q = hrm__tau_scan_panel(c, L, a);
     for (;;) {
         hrm_real b, worst, fac;
         int small = h < res && !failed && q < 0, floor = !small && h <= res && q < 0; /* floor: the last try */
         n = 8;
         if (q >= 0) {
-            b = hrm__scan_at(L->scan_end, 8 * q + 8, HRM__SCAN);
-            for (i = 0; i < HRM__CH; ++i)
-                for (j = 0; j <= 8; ++j) f[i][2 * j] = L->scan_s[8 * q + j][i];
+            b = L->scan_b[q + 1];
+            for (i = 0; i < HRM__CH; ++i) {
+                f[i][0] = L->sig_b[i];
+                for (j = 1; j <= 8; ++j) f[i][2 * j] = L->scan_s[8 * q + j][i];
+            }
             worst = hrm__tau_fit(c, L, a, b, n, 1, tau_a, f, co, dtau);
         } else {
             if (floor) h = res;
@@ -6934,10 +6944,12 @@ static HRM_DEVICE HRM__CALL int hrm__locate_sigma_jump(hrm__ctx *c, hrm_real a, 
 }
 
 /* The medium scan (options.find_jumps, sigma from callbacks): sigma_t at
-   nscan + 1 offsets (hrm__scan_at: by default HRM__SCAN, the degree-8
-   Lobatto points of 4 equal panels, kept for the transmittance layer,
-   whose march tries those panels first on them; as many as the medium's
-   feature asks for, evenly spaced, at most HRM__SCAN_MAX; and both sides
+   nscan + 1 offsets (hrm__scan_at: by default the degree-8 Lobatto points
+   of panels laid over the pieces between the breakpoints, 4 at least and
+   one a piece (hrm__scan_layout: 33 points without breakpoints), kept for
+   the transmittance layer, whose march tries those panels first on them;
+   as many as the medium's feature asks for, evenly spaced, at most
+   HRM__SCAN_MAX, and so with more than HRM__SCAN_Q pieces; and both sides
    of each breakpoint);
    where neighbours differ by a factor 2 or more the jump between them is
    located and made a breakpoint before the method runs, so that a slab or
@@ -6967,12 +6979,39 @@ static HRM_DEVICE HRM__CALL int hrm__locate_sigma_jump(hrm__ctx *c, hrm_real a, 
    rules, which still cover the rest, spend little there (a cloud's core:
    a quarter of a camera ray's lookups saved). */
 #define HRM__SCAN_MAX 4096
+
+/* The scan's panels over the pieces between the breakpoints: one a piece
+   at least, 4 in all at least, the rest to the pieces whose panels are
+   longest; their ends into b. Returns their count, 0 where the pieces are
+   more than HRM__SCAN_Q (the scan then evenly spaced). */
+static HRM_DEVICE int hrm__scan_layout(const hrm__ctx *c, hrm_real b[HRM__SCAN_Q + 1])
+{
+    int np = c->nbrk + 1, nq = np > 4 ? np : 4, q[HRM__SCAN_Q], i, j, k = 0, e;
+    if (np > HRM__SCAN_Q) return 0;
+    for (i = 0; i < np; ++i) q[i] = 1;
+    for (e = np; e < nq; ++e) {
+        int best = 0;
+        for (i = 1; i < np; ++i) {
+            hrm_real li = (i < c->nbrk ? c->brk_off[i] : c->off_end) - c->brk_off[i - 1];
+            hrm_real lb = (best < c->nbrk ? c->brk_off[best] : c->off_end) - (best ? c->brk_off[best - 1] : 0);
+            if (li * (hrm_real)q[best] > lb * (hrm_real)q[i]) best = i;
+        }
+        q[best]++;
+    }
+    for (i = 0; i < np; ++i) {
+        hrm_real lo = i ? c->brk_off[i - 1] : 0, hi = i < c->nbrk ? c->brk_off[i] : c->off_end;
+        for (j = 0; j < q[i]; ++j) b[k++] = j ? lo + (hi - lo) * ((hrm_real)j / (hrm_real)q[i]) : lo;
+    }
+    b[nq] = c->off_end;
+    return nq;
+}
+
 static HRM_DEVICE HRM__CALL void hrm__scan_medium(hrm__ctx *c)
 {
-    hrm_real sa[HRM__CH], sx[HRM__CH];
+    hrm_real sa[HRM__CH], sx[HRM__CH], pb[HRM__SCAN_Q + 1];
     hrm_real a = 0, fa = hrm__sigma_sum(c, 0, 0, sa), tau[HRM__CH], least;
     hrm_real deep = 2 * HRM_LOG(64 / c->rtol);
-    int k = 1, b = 0, i, nscan = HRM__SCAN, prev = 0, keep;
+    int k = 1, b = 0, i, nscan = HRM__SCAN, prev = 0, keep, nq = 0;
     hrm_real fp = 0;
     hrm__fill(tau, HRM__CH, 0);
     if (c->m->feature > 0) {
@@ -6980,15 +7019,23 @@ static HRM_DEVICE HRM__CALL void hrm__scan_medium(hrm__ctx *c)
         hrm_real n = c->off_end / c->m->feature;
         if (n > HRM__SCAN) nscan = n >= HRM__SCAN_MAX ? HRM__SCAN_MAX : (int)n + 1;
     }
-    /* the samples kept for the layer's first panels (the default count) */
-    keep = c->decoupled && nscan == HRM__SCAN && c->tau->end == c->off_end;
+    if (nscan == HRM__SCAN) {
+        nq = hrm__scan_layout(c, pb);
+        if (nq) nscan = 8 * nq;
+    }
+    /* the samples kept for the layer's first panels */
+    keep = c->decoupled && nq && c->tau->end == c->off_end;
     if (keep) {
-        c->tau->scan_end = c->off_end;
-        memcpy(c->tau->scan_s[0], sa, sizeof sa);
-        c->tau->scan_have[0] = 1;
+        hrm__tau *L = c->tau;
+        L->scan_q = nq;
+        memcpy(L->scan_b, pb, sizeof pb);
+        memset(L->scan_have, 0, sizeof L->scan_have);
+        memset(L->scan_ha, 0, sizeof L->scan_ha);
+        memcpy(L->scan_s[0], sa, sizeof sa);
+        L->scan_have[0] = 1;
     }
     while (a < c->off_end && c->status == HRM_OK) {
-        hrm_real grid = hrm__scan_at(c->off_end, k, nscan), x, fx, at;
+        hrm_real grid = hrm__scan_at(pb, nq, c->off_end, k, nscan), x, fx, at;
         int is_brk, gk = k;
         /* the next point: a grid point or a breakpoint, whichever is first */
         while (b < c->nbrk && c->brk_off[b] <= a) ++b;
@@ -6997,7 +7044,7 @@ static HRM_DEVICE HRM__CALL void hrm__scan_medium(hrm__ctx *c)
         if (!is_brk) ++k;
         if (!(x > a)) continue;
         fx = hrm__sigma_sum(c, x, -1, sx);
-        if (keep && !is_brk) {
+        if (keep && x == grid) {
             memcpy(c->tau->scan_s[gk], sx, sizeof sx);
             c->tau->scan_have[gk] = 1;
         }
@@ -7026,8 +7073,13 @@ static HRM_DEVICE HRM__CALL void hrm__scan_medium(hrm__ctx *c)
         if (least > deep) return;
         fp = fa;
         prev = !is_brk;
-        if (is_brk) fa = hrm__sigma_sum(c, x, 1, sa);
-        else {
+        if (is_brk) {
+            fa = hrm__sigma_sum(c, x, 1, sa);
+            if (keep && x == grid && gk % 8 == 0) { /* a panel's start: its side */
+                memcpy(c->tau->scan_a[gk / 8], sa, sizeof sa);
+                c->tau->scan_ha[gk / 8] = 1;
+            }
+        } else {
             fa = fx;
             memcpy(sa, sx, sizeof sa);
         }
