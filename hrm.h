@@ -435,7 +435,7 @@
    HRM_TAU_DECOUPLED  (default: adaptive methods; fixed-step ones with a fit,
        or Simpson, RK4 and Adams-Bashforth under a warp) sigma_t on its own
        abscissae (Kulla and Fajardo 2012; Munoz 2014 s.6): panels in t,
-       Chebyshev interpolation of degree 8 then 16 (the first 4 panels: 8 on
+       Chebyshev interpolation of degree 8 then 16 (the first panels: 8 on
        the scan's points), each accepted when its error of tau, weighted by Tr
        at its start, is at most tau_tol times its increment of tau or 1/64, the
        larger; L's relative error from tau stays below tau_tol (1 + K/64), K

@@ -1021,9 +1021,13 @@ static void ad_ws_one(void *u, hrm_real t, hrm_real out[NCH])
     for (c = 0; c < NCH; ++c) out[c] = (hrm_real)(1 + 0.5 * sin(0.3 * (double)t));
 }
 
-static int ad_ws_same(const hrm_result *a, const hrm_result *b)
+/* a and b the same answer, stats and jumps; more_medium: a's medium
+   evaluations may exceed b's */
+static int ad_ws_same(const hrm_result *a, const hrm_result *b, int more_medium)
 {
-    int c, k, same = a->stats.evals == b->stats.evals && a->stats.medium_evals == b->stats.medium_evals &&
+    int c, k, same = a->stats.evals == b->stats.evals &&
+                     (more_medium ? a->stats.medium_evals >= b->stats.medium_evals
+                                  : a->stats.medium_evals == b->stats.medium_evals) &&
                      a->stats.steps == b->stats.steps && a->stats.rejected == b->stats.rejected &&
                      a->njumps == b->njumps;
     for (c = 0; c < NCH; ++c)
@@ -1095,7 +1099,7 @@ static void ad_workspace(void)
                             memset(ws, 0xA5, o.workspace_size); /* nothing read before it is written */
                             s2 = hrm_solve(&m, 0, 6, &o, &in_ws);
                             ++runs;
-                            if (s1 != s2 || !ad_ws_same(&plain, &in_ws)) {
+                            if (s1 != s2 || !ad_ws_same(&plain, &in_ws, 0)) {
                                 ++diff;
                                 CHECK(0, "%s, %s, %s, warp %d, exp %d, nested %d: the workspace changed the answer "
                                       "(status %d/%d, L %.17g/%.17g, evals %ld/%ld)",
@@ -1114,13 +1118,12 @@ static void ad_workspace(void)
            and steps; only the medium evaluations may differ (more on the
            stack). */
         static const hrm_method ms[3] = {HRM_NESTED_SIMPSON, HRM_GAUSS_KRONROD, HRM_DORMAND_PRINCE};
-        int k, c, re = 0;
+        int k, re = 0;
         for (k = 0; k < 3; ++k) {
             hrm_medium m;
             hrm_options o = hrm_default_options(ms[k]);
             hrm_result plain, in_ws;
             hrm_status s1, s2;
-            int same;
             memset(&m, 0, sizeof m);
             m.sigma = ad_ws_kink;
             m.Li = ad_ws_one;
@@ -1129,11 +1132,7 @@ static void ad_workspace(void)
             o.workspace = ws;
             o.workspace_size = hrm_workspace_size(&o);
             s2 = hrm_solve(&m, 0, 20, &o, &in_ws);
-            same = s1 == s2 && plain.stats.evals == in_ws.stats.evals && plain.stats.steps == in_ws.stats.steps &&
-                   plain.njumps == in_ws.njumps && plain.stats.medium_evals >= in_ws.stats.medium_evals;
-            for (c = 0; c < NCH; ++c)
-                same &= plain.L[c] == in_ws.L[c] && plain.Tr[c] == in_ws.Tr[c] && plain.error[c] == in_ws.error[c];
-            CHECK(s1 >= 0 && same, "kinked medium, %s: the stack's table (32 panels) and a workspace's give the same "
+            CHECK(s1 >= 0 && s1 == s2 && ad_ws_same(&plain, &in_ws, 1), "kinked medium, %s: the stack's table (32 panels) and a workspace's give the same "
                   "answer (status %d/%d, L %.17g/%.17g, evals %ld/%ld, medium evaluations %ld/%ld)",
                   hrm_method_name(ms[k]), s1, s2, (double)plain.L[0], (double)in_ws.L[0], plain.stats.evals,
                   in_ws.stats.evals, plain.stats.medium_evals, in_ws.stats.medium_evals);
