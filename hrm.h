@@ -1486,6 +1486,10 @@ typedef struct hrm__ctx {
        or a node below the resolution of t, finds its values here instead
        of calling the callbacks again. */
     int use_memo, nmemo, memo_next, have_end;
+    hrm_real memo_s[HRM__MEMO]; /* the memo's abscissae, side by side for
+                                   the search (memo[k].s) */
+    hrm_real memo_max;          /* the largest ever stored: a march's new
+                                   nodes beyond it are not searched for */
     hrm_real err_acc[HRM__CH]; /* adaptive: the accepted error estimates */
     hrm_real src_max[HRM__CH]; /* the largest S / sigma_t sampled (the larger
                                   of Le and Li where sigma_t is not known,
@@ -3497,7 +3501,9 @@ static HRM_DEVICE int hrm__memo_hit(hrm__ctx *c, hrm_real p, hrm_real s, hrm_rea
 {
     int i, k;
     if (!c->use_memo) return 0;
-    for (k = 0; k < c->nmemo && c->memo[k].s != s; ++k) {}
+    k = c->nmemo;
+    if (s <= c->memo_max)
+        for (k = 0; k < c->nmemo && c->memo_s[k] != s; ++k) {}
     if (k == c->nmemo) {
         if (!(c->have_end && s == c->s_end)) return 0;
         k = HRM__MEMO;
@@ -3642,6 +3648,10 @@ static HRM_DEVICE void hrm__memo_store(hrm__ctx *c, hrm_real p, hrm_real s, cons
 {
     int k = s == c->s_end ? HRM__MEMO : c->memo_next;
     c->memo[k].s = s;
+    if (k < HRM__MEMO) {
+        c->memo_s[k] = s;
+        if (!(s <= c->memo_max)) c->memo_max = s;
+    }
     c->memo[k].p = p;
     memcpy(c->memo[k].q, q, sizeof c->memo[k].q);
     memcpy(c->memo[k].st, st, sizeof c->memo[k].st);
