@@ -265,9 +265,9 @@
    (or hrm_solve) for its shadow ray. Randomness (Monte Carlo, jitter) comes
    from options.seed alone: the same inputs give the same answer.
    Stack (tests/stack.c: the worst variant, double, 3 channels, gcc, clang
-   -O2): fixed-step methods 7-11 KiB on constants, 24 at most (the
-   transmittance layer 10: a table of 32 panels); the pairs 14 and 29;
-   Gauss-Kronrod 86, nested Simpson 115; the shadow-ray estimator 8; about 2.2
+   -O2): fixed-step methods 7-11 KiB on constants, 25 at most (the
+   transmittance layer 11: a table of 32 panels); the pairs 14 and 30;
+   Gauss-Kronrod 88, nested Simpson 105; the shadow-ray estimator 8; about 2.2
    times that with 8 channels, half in float, at most (48 + 48 HRM_CHANNELS)
    KiB; twice with a shadow ray solved inside Li. options.workspace
    (hrm_workspace_size bytes, aligned to 16, one a thread) holds the layer (128
@@ -1454,6 +1454,12 @@ typedef struct hrm__memo {
     hrm_real s, p, q[HRM__CH], st[HRM__CH], tr[HRM__CH];
 } hrm__memo;
 
+/* The memo's storage: its entries and their abscissae side by side. */
+typedef struct hrm__memo_tab {
+    hrm__memo e[HRM__MEMO + 1];
+    hrm_real s[HRM__MEMO];
+} hrm__memo_tab;
+
 /* The pieces between breakpoints: their ends in p, and a fixed-step
    method's steps on each (hrm__solve_broken). */
 typedef struct hrm__piece_tab {
@@ -1486,8 +1492,8 @@ typedef struct hrm__ctx {
        or a node below the resolution of t, finds its values here instead
        of calling the callbacks again. */
     int use_memo, nmemo, memo_next, have_end;
-    hrm_real memo_s[HRM__MEMO]; /* the memo's abscissae, side by side for
-                                   the search (memo[k].s) */
+    hrm_real *memo_s;           /* the memo's abscissae, side by side for
+                                   the search (memo[k].s; hrm__memo_tab) */
     hrm_real memo_max;          /* the largest ever stored: a march's new
                                    nodes beyond it are not searched for */
     hrm_real err_acc[HRM__CH]; /* adaptive: the accepted error estimates */
@@ -1529,7 +1535,7 @@ typedef struct hrm__ctx {
     const struct hrm__gk_pair *gk; /* Gauss-Kronrod: the pair */
     hrm__memo *memo;       /* HRM__MEMO + 1 entries (adaptive methods) */
     struct hrm__ns_store *ns;  /* nested Simpson's storage */
-    struct hrm__ns_iv *finish; /* its finish's stack in the workspace, or NULL */
+    struct hrm__ns_half *finish; /* its finish's stack in the workspace, or NULL */
     hrm__piece_tab *pieces; /* the pieces' tables in the workspace, or NULL */
     struct hrm__gk_store *gks; /* global Gauss-Kronrod's */
     int unresolved;        /* a warp's distinct nodes at one abscissa */
@@ -5111,6 +5117,15 @@ typedef struct hrm__ns_iv {
     int depth;
 } hrm__ns_iv;
 
+/* A right half waiting on the finish's stack: its start is the end of
+   the last interval accepted before it (the left half's), so only its
+   centre and end are kept. */
+typedef struct hrm__ns_half {
+    hrm__pt m, b;
+    hrm_real parent;
+    int depth;
+} hrm__ns_half;
+
 /* Simpson and trapezoid on one interval given tau at its left end:
    val = the increments of (tau, L), err = Simpson - trapezoid. */
 static HRM_DEVICE HRM__CALL void hrm__ns_rule(const hrm__ctx *c, const hrm__pt *a, const hrm__pt *m,
@@ -5192,7 +5207,7 @@ static HRM_DEVICE void hrm__with_miss(hrm_real *E, const hrm_real *M)
    left end (acc) is final when it is judged, and its nodes' tau come from
    its own sigma_t samples as in hrm__simpson. */
 static HRM_DEVICE HRM__CALL void hrm__ns_local_run(hrm__ctx *c, const hrm__pt *a, const hrm__pt *m, const hrm__pt *b,
-                              hrm_real acc[HRM__NY], hrm__ns_iv *stack)
+                              hrm_real acc[HRM__NY], hrm__ns_half *stack)
 {
     hrm__ns_iv cur;
     hrm_real val[HRM__NY], err[HRM__NY], miss[HRM__CH];
@@ -5234,17 +5249,15 @@ static HRM_DEVICE HRM__CALL void hrm__ns_local_run(hrm__ctx *c, const hrm__pt *a
                 split = 0;
             }
             if (split) {
-                hrm__ns_iv right;
-                right.a = cur.m;
-                right.m = qr;
-                right.b = cur.b;
-                right.depth = cur.depth + 1;
-                right.parent = ratio;
+                hrm__ns_half *right = &stack[top++];
+                right->m = qr;
+                right->b = cur.b;
+                right->depth = cur.depth + 1;
+                right->parent = ratio;
                 cur.b = cur.m;
                 cur.m = ql;
                 cur.depth++;
                 cur.parent = ratio;
-                stack[top++] = right;
                 c->stats.rejected++;
             }
         }
@@ -5254,7 +5267,12 @@ static HRM_DEVICE HRM__CALL void hrm__ns_local_run(hrm__ctx *c, const hrm__pt *a
             hrm__accepted(c, err);
             c->stats.steps++;
             if (top == 0) return;
-            cur = stack[--top];
+            --top;
+            cur.a = cur.b; /* where the right half starts */
+            cur.m = stack[top].m;
+            cur.b = stack[top].b;
+            cur.depth = stack[top].depth;
+            cur.parent = stack[top].parent;
         }
     }
 }
@@ -5264,7 +5282,7 @@ static HRM_DEVICE HRM__CALL void hrm__ns_local_run(hrm__ctx *c, const hrm__pt *a
 static HRM_DEVICE HRM__NOINLINE void hrm__ns_local_on_stack(hrm__ctx *c, const hrm__pt *a, const hrm__pt *m,
                                                  const hrm__pt *b, hrm_real acc[HRM__NY])
 {
-    hrm__ns_iv stack[HRM_MAX_DEPTH + 1];
+    hrm__ns_half stack[HRM_MAX_DEPTH + 1];
     hrm__ns_local_run(c, a, m, b, acc, stack);
 }
 
@@ -6208,9 +6226,9 @@ HRM__DEF HRM_DEVICE hrm_options hrm_default_options(hrm_method method)
 static HRM_DEVICE size_t hrm__need_bytes(int k)
 {
     static const size_t bytes[HRM__NEEDS] = {HRM__TAU_HEAD + sizeof(hrm__tpanel) * HRM_TAU_PANELS,
-                                             sizeof(hrm__memo) * (HRM__MEMO + 1),
+                                             sizeof(hrm__memo_tab),
                                              sizeof(hrm__efit) * 2, sizeof(hrm__ns_store),
-                                             sizeof(hrm__gk_store), sizeof(hrm__ns_iv) * (HRM_MAX_DEPTH + 1),
+                                             sizeof(hrm__gk_store), sizeof(hrm__ns_half) * (HRM_MAX_DEPTH + 1),
                                              sizeof(hrm__ctx), sizeof(hrm__piece_tab)};
     return (bytes[k] + 15) / 16 * 16;
 }
@@ -6417,7 +6435,7 @@ static HRM_DEVICE int hrm__tau_closed(hrm__tau_src src)
 /* The context of one solve: medium, flags, tolerances, the warp and the
    step bounds; layer, memo, ef: the storage hrm__needs asked for (else
    NULL). Returns an error, or HRM_OK with c ready to dispatch. */
-static HRM_DEVICE HRM__CALL hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, hrm__memo *memo, hrm__efit *ef,
+static HRM_DEVICE HRM__CALL hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, hrm__memo_tab *memo, hrm__efit *ef,
                              const hrm_medium *m, hrm_real t0, hrm_real t1, const hrm_options *o,
                              int tr_only)
 {
@@ -6438,7 +6456,8 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, 
     c->per_length = (m->flags & HRM_EMISSION_PER_LENGTH) != 0;
     c->rte = o->form == HRM_FORM_RTE && mi->rte;
     c->use_memo = hrm__is_adaptive(o->method);
-    c->memo = memo;
+    c->memo = memo ? memo->e : NULL;
+    c->memo_s = memo ? memo->s : NULL;
     /* Tolerances: below 100 epsilons round-off dominates any estimate. */
     c->rtol = o->rtol;
     if (c->rtol < 100 * HRM__EPS && hrm__is_adaptive(o->method)) {
@@ -7477,8 +7496,8 @@ static HRM_DEVICE HRM__NOINLINE hrm_status hrm__with_layer(hrm__job *j)
 
 static HRM_DEVICE HRM__NOINLINE hrm_status hrm__with_memo(hrm__job *j)
 {
-    hrm__memo memo[HRM__MEMO + 1];
-    j->at[1] = memo;
+    hrm__memo_tab memo;
+    j->at[1] = &memo;
     j->need &= ~HRM__NEED_MEMO;
     return hrm__stage(j);
 }
@@ -7520,9 +7539,9 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE hrm_status hrm__solve_job(hrm__job *j,
     memset(c, 0, sizeof *c);
     c->ns = (hrm__ns_store *)j->at[3];
     c->gks = (hrm__gk_store *)j->at[4];
-    c->finish = (hrm__ns_iv *)j->at[5];
+    c->finish = (hrm__ns_half *)j->at[5];
     c->pieces = (hrm__piece_tab *)j->at[7];
-    st = hrm__setup(c, (hrm__tau *)j->at[0], (hrm__memo *)j->at[1], (hrm__efit *)j->at[2], m, j->t0, t1,
+    st = hrm__setup(c, (hrm__tau *)j->at[0], (hrm__memo_tab *)j->at[1], (hrm__efit *)j->at[2], m, j->t0, t1,
                     o, j->tr_only);
     *j->stats = c->stats;
     if (st != HRM_OK) return st;
