@@ -368,6 +368,14 @@ static void tr_scan_panels(void)
     static const hrm_real brk2[2] = {(hrm_real)2.7, (hrm_real)6.1};
     int kind, mi, w, ir, c;
     long worst = 0;
+    double wave[NCH]; /* the wave's L: the reference, once */
+    {
+        tr_medium p;
+        tr_constant(&p, 0.2);
+        p.amp = 0.3;
+        p.w = 0.3;
+        for (c = 0; c < NCH; ++c) wave[c] = tr_reference(&p, c, 0, 10);
+    }
     for (kind = 0; kind < 6; ++kind)
         for (mi = 0; mi < TR_NMETHODS; ++mi)
             for (w = 0; w < 2; ++w)
@@ -407,7 +415,7 @@ static void tr_scan_panels(void)
                           rs.stats.medium_evals, p.n_sigma, rs.stats.evals, most);
                     if (st != HRM_OK) continue;
                     if (kind % 2) {
-                        for (c = 0; c < NCH; ++c) ref[c] = tr_reference(&p, c, 0, 10);
+                        for (c = 0; c < NCH; ++c) ref[c] = wave[c];
                     } else {
                         mc = tr_make(&p, 1, 0);
                         CHECK_INT(hrm_solve(&mc, 0, 10, &o, &rc), HRM_OK, "constant, %s warp %s rtol %g: constants",
