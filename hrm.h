@@ -2422,18 +2422,31 @@ static HRM_DEVICE int hrm__tau_cp_before(const hrm__tau *L, hrm_real off)
    inside; else -1. */
 static HRM_DEVICE int hrm__tau_scan_panel(const hrm__ctx *c, const hrm__tau *L, hrm_real a)
 {
-    int q, j, k;
-    for (q = 0; q < L->scan_q; ++q) {
-        hrm_real b = L->scan_b[q + 1];
-        if (L->scan_b[q] != a) continue;
-        for (j = 1; j <= 8; ++j)
-            if (!L->scan_have[8 * q + j]) return -1;
-        for (k = 0; k < c->nbrk; ++k)
-            if (c->brk_off[k] > a && c->brk_off[k] < b) return -1;
-        if (!(a > 0 ? hrm__is_break(c, a) ? L->scan_ha[q] : L->scan_have[8 * q] : L->scan_have[0])) return -1;
-        return b <= L->end ? q : -1;
+    int q = 0, j, k;
+    hrm_real b;
+    while (q < L->scan_q && L->scan_b[q] != a) ++q;
+    if (q == L->scan_q) return -1;
+    b = L->scan_b[q + 1];
+    if (b > L->end) return -1;
+    /* its start: at a breakpoint the right side's sample */
+    if (a > 0 && hrm__is_break(c, a) ? !L->scan_ha[q] : !L->scan_have[8 * q]) return -1;
+    for (j = 1; j <= 8; ++j)
+        if (!L->scan_have[8 * q + j]) return -1;
+    for (k = 0; k < c->nbrk; ++k)
+        if (c->brk_off[k] > a && c->brk_off[k] < b) return -1;
+    return q;
+}
+
+/* The scan's samples of its panel q at the degree-8 points, into
+   f[.][0, 2, .., 16] (the start's right side at a breakpoint). */
+static HRM_DEVICE void hrm__tau_scan_take(const hrm__ctx *c, const hrm__tau *L, int q,
+                               hrm_real f[HRM__CH][HRM__CHEB + 1])
+{
+    int i, j, right = L->scan_b[q] > 0 && hrm__is_break(c, L->scan_b[q]);
+    for (i = 0; i < HRM__CH; ++i) {
+        f[i][0] = right ? L->scan_a[q][i] : L->scan_s[8 * q][i];
+        for (j = 1; j <= 8; ++j) f[i][2 * j] = L->scan_s[8 * q + j][i];
     }
-    return -1;
 }
 
 /* Accept one more panel after the last (the ray's first from t0), its
@@ -2489,10 +2502,7 @@ static HRM_DEVICE HRM__CALL void hrm__tau_march(hrm__ctx *c, hrm__tau *L, hrm__t
         n = 8;
         if (q >= 0) {
             b = L->scan_b[q + 1];
-            for (i = 0; i < HRM__CH; ++i) {
-                f[i][0] = L->sig_b[i];
-                for (j = 1; j <= 8; ++j) f[i][2 * j] = L->scan_s[8 * q + j][i];
-            }
+            hrm__tau_scan_take(c, L, q, f);
             worst = hrm__tau_fit(c, L, a, b, n, 1, tau_a, f, co, dtau);
         } else {
             if (floor) h = res;
@@ -2550,10 +2560,16 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE hrm__tcoef *hrm__tau_refit(hrm__ctx *c
     const hrm__tpanel *p = &L->tab[lo % L->ntab];
     hrm_real f[HRM__CH][HRM__CHEB + 1], dtau[HRM__CH], v[HRM__CH];
     hrm__tcoef *co = hrm__tcache_slot(L);
-    int i;
-    hrm__sigma_t_at(c, p->a, 1, v);
-    for (i = 0; i < HRM__CH; ++i) f[i][0] = v[i];
-    hrm__tau_fit(c, L, p->a, p->b, p->deg, 0, p->tau_a, f, co, dtau);
+    int i, q = hrm__tau_scan_panel(c, L, p->a);
+    if (q >= 0 && L->scan_b[q + 1] == p->b) {
+        /* a panel of the scan's: its samples, not the medium's again */
+        hrm__tau_scan_take(c, L, q, f);
+        hrm__tau_fit(c, L, p->a, p->b, p->deg, 1, p->tau_a, f, co, dtau);
+    } else {
+        hrm__sigma_t_at(c, p->a, 1, v);
+        for (i = 0; i < HRM__CH; ++i) f[i][0] = v[i];
+        hrm__tau_fit(c, L, p->a, p->b, p->deg, 0, p->tau_a, f, co, dtau);
+    }
     co->id = lo;
     return co;
 }
@@ -4640,26 +4656,20 @@ static HRM_DEVICE HRM__CALL int hrm__rk_stages_in(hrm__ctx *c, const hrm__tablea
    largest's, or that of one of at most 4 stages (Euler, RK4 and so
    Adams-Bashforth's start, Bogacki-Shampine), half of it. */
 #define HRM__FEW_STAGES 4
-static HRM_DEVICE HRM__NOINLINE int hrm__rk_stages(hrm__ctx *c, const hrm__tableau *tb, const hrm__pt *start,
-                                                   hrm__pt *end, hrm_real p, hrm_real p_end, const hrm_real *y,
-                                                   hrm_real *ynew, hrm_real *err, const hrm__nodes_info *ni,
-                                                   hrm_real *both)
-{
-    hrm__pt pts[HRM__MAX_STAGES];
-    hrm_real k[HRM__MAX_STAGES][HRM__NY];
-    return hrm__rk_stages_in(c, tb, start, end, p, p_end, y, ynew, err, ni, both, pts, k);
-}
-
-static HRM_DEVICE HRM__NOINLINE int hrm__rk_stages_few(hrm__ctx *c, const hrm__tableau *tb, const hrm__pt *start,
-                                                       hrm__pt *end, hrm_real p, hrm_real p_end, const hrm_real *y,
-                                                       hrm_real *ynew, hrm_real *err, const hrm__nodes_info *ni,
-                                                       hrm_real *both)
-{
-    hrm__pt pts[HRM__FEW_STAGES];
-    hrm_real k[HRM__FEW_STAGES][HRM__NY];
-    HRM_ASSERT(tb->s <= HRM__FEW_STAGES);
-    return hrm__rk_stages_in(c, tb, start, end, p, p_end, y, ynew, err, ni, both, pts, k);
-}
+#define HRM__RK_STAGES_FRAME(name, n)                                                                       \
+    static HRM_DEVICE HRM__NOINLINE int name(hrm__ctx *c, const hrm__tableau *tb, const hrm__pt *start,     \
+                                             hrm__pt *end, hrm_real p, hrm_real p_end, const hrm_real *y,   \
+                                             hrm_real *ynew, hrm_real *err, const hrm__nodes_info *ni,      \
+                                             hrm_real *both)                                                \
+    {                                                                                                       \
+        hrm__pt pts[n];                                                                                     \
+        hrm_real k[n][HRM__NY];                                                                             \
+        HRM_ASSERT(tb->s <= n);                                                                             \
+        return hrm__rk_stages_in(c, tb, start, end, p, p_end, y, ynew, err, ni, both, pts, k);              \
+    }
+HRM__RK_STAGES_FRAME(hrm__rk_stages, HRM__MAX_STAGES)
+HRM__RK_STAGES_FRAME(hrm__rk_stages_few, HRM__FEW_STAGES)
+#undef HRM__RK_STAGES_FRAME
 
 /* hrm__rk_quad for a fixed step (no error estimate) without a fit: no
    node is read again but the step's end, so the nodes inside are
@@ -7016,21 +7026,21 @@ static HRM_DEVICE HRM__CALL int hrm__locate_sigma_jump(hrm__ctx *c, hrm_real a, 
 static HRM_DEVICE int hrm__scan_layout(const hrm__ctx *c, hrm_real b[HRM__SCAN_Q + 1])
 {
     int np = c->nbrk + 1, nq = np > 4 ? np : 4, q[HRM__SCAN_Q], i, j, k = 0, e;
+    hrm_real lo[HRM__SCAN_Q], len[HRM__SCAN_Q];
     if (np > HRM__SCAN_Q) return 0;
-    for (i = 0; i < np; ++i) q[i] = 1;
+    for (i = 0; i < np; ++i) {
+        lo[i] = i ? c->brk_off[i - 1] : 0;
+        len[i] = (i < c->nbrk ? c->brk_off[i] : c->off_end) - lo[i];
+        q[i] = 1;
+    }
     for (e = np; e < nq; ++e) {
         int best = 0;
-        for (i = 1; i < np; ++i) {
-            hrm_real li = (i < c->nbrk ? c->brk_off[i] : c->off_end) - c->brk_off[i - 1];
-            hrm_real lb = (best < c->nbrk ? c->brk_off[best] : c->off_end) - (best ? c->brk_off[best - 1] : 0);
-            if (li * (hrm_real)q[best] > lb * (hrm_real)q[i]) best = i;
-        }
+        for (i = 1; i < np; ++i)
+            if (len[i] * (hrm_real)q[best] > len[best] * (hrm_real)q[i]) best = i;
         q[best]++;
     }
-    for (i = 0; i < np; ++i) {
-        hrm_real lo = i ? c->brk_off[i - 1] : 0, hi = i < c->nbrk ? c->brk_off[i] : c->off_end;
-        for (j = 0; j < q[i]; ++j) b[k++] = j ? lo + (hi - lo) * ((hrm_real)j / (hrm_real)q[i]) : lo;
-    }
+    for (i = 0; i < np; ++i)
+        for (j = 0; j < q[i]; ++j) b[k++] = j ? lo[i] + len[i] * ((hrm_real)j / (hrm_real)q[i]) : lo[i];
     b[nq] = c->off_end;
     return nq;
 }
