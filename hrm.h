@@ -1044,6 +1044,7 @@ HRM__STATIC_ASSERT(shadow_panels_8_to_4096, HRM_SHADOW_PANELS >= 8 && HRM_SHADOW
 
 #define HRM__MEMO 32 /* abscissae the adaptive methods remember, and the
                         ray's end in a slot of its own (the last index) */
+#define HRM__MEMO_BINS 128 /* the memo's abscissae counted by a hash */
 
 /* Method families (the method table's second column). */
 #define HRM__FIXED_QUAD 0
@@ -1454,10 +1455,13 @@ typedef struct hrm__memo {
     hrm_real s, p, q[HRM__CH], st[HRM__CH], tr[HRM__CH];
 } hrm__memo;
 
-/* The memo's storage: its entries and their abscissae side by side. */
+/* The memo's storage: its entries, their abscissae side by side, and how
+   many of them fall in each bin of a hash of the abscissa (a node in an
+   empty bin, most of them, is not searched for). */
 typedef struct hrm__memo_tab {
     hrm__memo e[HRM__MEMO + 1];
     hrm_real s[HRM__MEMO];
+    unsigned char bin[HRM__MEMO_BINS];
 } hrm__memo_tab;
 
 /* The pieces between breakpoints: their ends in p, and a fixed-step
@@ -1494,6 +1498,7 @@ typedef struct hrm__ctx {
     int use_memo, nmemo, memo_next, have_end;
     hrm_real *memo_s;           /* the memo's abscissae, side by side for
                                    the search (memo[k].s; hrm__memo_tab) */
+    unsigned char *memo_bin;    /* and their count by hash (hrm__memo_bin) */
     hrm_real memo_max;          /* the largest ever stored: a march's new
                                    nodes beyond it are not searched for */
     hrm_real err_acc[HRM__CH]; /* adaptive: the accepted error estimates */
@@ -1579,10 +1584,13 @@ static HRM_DEVICE void hrm__fill(hrm_real *v, int n, hrm_real x)
    after it. */
 static HRM_DEVICE void hrm__check(hrm__ctx *c, hrm_real *v, int kind)
 {
+    hrm_real hi = kind == 2 ? 1 : kind == 1 ? c->range : HRM__IS_FLOAT ? HRM__R(FLT_MAX) : HRM__R(DBL_MAX);
+    hrm_real lo = kind == 0 ? -hi : 0;
     int i;
     for (i = 0; i < HRM__CH; ++i) {
-        int ok = HRM__FINITE(v[i]) && (kind == 0 || v[i] >= 0) &&
-                 (kind != 2 || v[i] <= 1);
+        int ok;
+        if (v[i] >= lo && v[i] <= hi) continue; /* (most values: within) */
+        ok = HRM__FINITE(v[i]) && (kind == 0 || v[i] >= 0) && (kind != 2 || v[i] <= 1);
         if (!ok) {
             if (c->status == HRM_OK) c->status = HRM_ERR_CALLBACK_VALUE;
             v[i] = 0;
@@ -3517,6 +3525,15 @@ static HRM_DEVICE void hrm__node_tr(hrm__ctx *c, hrm__pt *pt, hrm_real s_off)
     for (i = 0; i < HRM__CH; ++i) pt->tr[i] = HRM_EXP(-pt->tau[i]);
 }
 
+/* The memo's bin of abscissa s: a multiplicative hash of its bits (0 and
+   -0, which compare equal, in one bin). */
+static HRM_DEVICE int hrm__memo_bin(hrm_real s)
+{
+    uint64_t x = 0;
+    if (s != 0) memcpy(&x, &s, sizeof s);
+    return (int)((x * 0x9E3779B97F4A7C15ull) >> 57) % HRM__MEMO_BINS;
+}
+
 /* hrm__eval, step 1: the memo. Where abscissa s was evaluated lately (or
    is the ray's end), its callbacks' values are taken again: 1. */
 static HRM_DEVICE int hrm__memo_hit(hrm__ctx *c, hrm_real p, hrm_real s, hrm_real s_raw, hrm__pt *pt)
@@ -3524,7 +3541,7 @@ static HRM_DEVICE int hrm__memo_hit(hrm__ctx *c, hrm_real p, hrm_real s, hrm_rea
     int i, k;
     if (!c->use_memo) return 0;
     k = c->nmemo;
-    if (s <= c->memo_max)
+    if (s <= c->memo_max && c->memo_bin[hrm__memo_bin(s)])
         for (k = 0; k < c->nmemo && c->memo_s[k] != s; ++k) {}
     if (k == c->nmemo) {
         if (!(c->have_end && s == c->s_end)) return 0;
@@ -3671,7 +3688,9 @@ static HRM_DEVICE void hrm__memo_store(hrm__ctx *c, hrm_real p, hrm_real s, cons
     int k = s == c->s_end ? HRM__MEMO : c->memo_next;
     c->memo[k].s = s;
     if (k < HRM__MEMO) {
+        if (c->nmemo == HRM__MEMO) c->memo_bin[hrm__memo_bin(c->memo_s[k])]--; /* (overwritten) */
         c->memo_s[k] = s;
+        c->memo_bin[hrm__memo_bin(s)]++;
         if (!(s <= c->memo_max)) c->memo_max = s;
     }
     c->memo[k].p = p;
@@ -4349,6 +4368,28 @@ static HRM_DEVICE hrm_real hrm__newton_top(const hrm__nodes_info *ni, hrm_real *
     return HRM_FABS(h * d[ni->m - 1]) * ni->W;
 }
 
+/* exp(-(tau - delta)) from a node's Tr = exp(-tau): delta, the layer's
+   tau at the node less the homogeneous medium's line over the interval,
+   is small once intervals resolve the medium; there a Taylor polynomial
+   to delta^7 (its remainder below 1e-19 for |delta| <= 2^-6) spares the
+   exponential the medium check paid at every node (a tenth of nested
+   Simpson's instructions with sigma callbacks). */
+static HRM_DEVICE hrm_real hrm__tr_near(hrm_real tr, hrm_real delta)
+{
+    hrm_real x = delta, p;
+    if (!(HRM_FABS(x) <= HRM__R(0.015625))) return tr * HRM_EXP(x);
+    /* Horner on 1/k!, k = 7 down to 0 */
+    p = HRM__R(1.0) / 5040;
+    p = p * x + HRM__R(1.0) / 720;
+    p = p * x + HRM__R(1.0) / 120;
+    p = p * x + HRM__R(1.0) / 24;
+    p = p * x + HRM__R(1.0) / 6;
+    p = p * x + HRM__R(0.5);
+    p = p * x + 1;
+    p = p * x + 1;
+    return tr * p;
+}
+
 /* Whether a rule's nodes resolve the medium. The layer knows tau along
    the ray to tau_tol; the nodes know only their own samples, and a medium
    that varies between them (sigma = max(0, sin 3t) under two panels of
@@ -4389,17 +4430,19 @@ static HRM_DEVICE HRM__CALL void hrm__medium_miss(const hrm__ctx *c, const hrm__
     int i, j;
     for (i = 0; i < HRM__CH; ++i) {
         hrm_real d = tau_b[i] - tau_a[i], A, M = 0, MT = 0, Q = 0, Mabs = 0, M0 = 0, rel, R, dd, Rn = 0;
-        hrm_real sbar = off_b > off_a ? d / (off_b - off_a) : 0, e0, tra = HRM_EXP(-tau_a[i]);
+        hrm_real sbar = off_b > off_a ? d / (off_b - off_a) : 0, e0, tra;
         int dev = 0;
         em[i] = 0;
         if (!(d > 0)) continue;
+        /* (a first node at the interval's start knows Tr there) */
+        tra = pt[0]->tau[i] == tau_a[i] ? pt[0]->tr[i] : HRM_EXP(-tau_a[i]);
         A = tra * -HRM_EXPM1(-d);
         if (!(A > 64 * HRM__EPS)) continue; /* Tr is 0 there: no light to miss */
         for (j = 0; j < n; ++j) {
             /* the homogeneous medium's sigma_t (Tr) ds/dp at the node */
             hrm_real f0 = sbar * pt[j]->J;
             hrm_real fj = c->expo ? pt[j]->sg[i] : pt[j]->sg[i] * pt[j]->tr[i];
-            if (!c->expo) f0 *= HRM_EXP(-tau_a[i] - sbar * (pt[j]->off - off_a));
+            if (!c->expo) f0 *= hrm__tr_near(pt[j]->tr[i], pt[j]->tau[i] - tau_a[i] - sbar * (pt[j]->off - off_a));
             if (HRM_FABS(fj - f0) > HRM__SQRT_EPS * f0) dev = 1;
             M += w[j] * pt[j]->sg[i];
             MT += w[j] * pt[j]->sg[i] * pt[j]->tr[i];
@@ -5943,6 +5986,7 @@ static HRM_DEVICE HRM__CALL void hrm__wf_split(hrm__ctx *c, hrm__wf *w, int k)
 static HRM_DEVICE HRM__CALL int hrm__wf_sum(hrm__ctx *c, hrm__wf *w, hrm_real acc[HRM__NY], int *pick)
 {
     hrm_real tau[HRM__CH], L[HRM__CH], EL[HRM__CH], Et[HRM__CH], tolL[HRM__CH], tolt[HRM__CH];
+    hrm_real rL[HRM__CH], rt[HRM__CH]; /* 1 / the tolerances (1e30 below 1e-30) */
     hrm_real worst = -1;
     int i, ch, pass, done = 1;
     *pick = -1;
@@ -5966,8 +6010,8 @@ static HRM_DEVICE HRM__CALL int hrm__wf_sum(hrm__ctx *c, hrm__wf *w, hrm_real ac
                     Et[ch] += et;
                     continue;
                 }
-                eL = tolL[ch] > 0 ? eL / tolL[ch] : eL * HRM__R(1e30);
-                et = tolt[ch] > 0 ? et / tolt[ch] : et * HRM__R(1e30);
+                eL *= rL[ch];
+                et *= rt[ch];
                 score = score > eL ? score : eL;
                 score = score > et ? score : et;
             }
@@ -5983,6 +6027,8 @@ static HRM_DEVICE HRM__CALL int hrm__wf_sum(hrm__ctx *c, hrm__wf *w, hrm_real ac
             tolL[ch] = c->rtol * HRM_FABS(L[ch]);
             tolL[ch] = tolL[ch] > c->atol ? tolL[ch] : c->atol;
             tolt[ch] = c->rtol * t;
+            rL[ch] = tolL[ch] > HRM__R(1e-30) ? 1 / tolL[ch] : HRM__R(1e30);
+            rt[ch] = tolt[ch] > HRM__R(1e-30) ? 1 / tolt[ch] : HRM__R(1e30);
             done &= EL[ch] <= tolL[ch] && Et[ch] <= tolt[ch];
             c->wf_tol += tolL[ch];
             acc[ch] = tau[ch];
@@ -6468,6 +6514,8 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, 
     c->use_memo = hrm__is_adaptive(o->method);
     c->memo = memo ? memo->e : NULL;
     c->memo_s = memo ? memo->s : NULL;
+    c->memo_bin = memo ? memo->bin : NULL;
+    if (memo) memset(memo->bin, 0, sizeof memo->bin);
     /* Tolerances: below 100 epsilons round-off dominates any estimate. */
     c->rtol = o->rtol;
     if (c->rtol < 100 * HRM__EPS && hrm__is_adaptive(o->method)) {

@@ -391,12 +391,16 @@ static void tr_scan_panels(void)
                     long extra, most;
                     int nb = kind < 2 ? 0 : kind < 4 ? 2 : 6, np = nb + 1;
                     if (!tr_adaptive(m)) continue;
-                    /* (not rtol 0.1, float's first: there Fehlberg's steps
-                       under the distance warp, with breakpoints 2.7 and
-                       6.1, stride over the light's peak at 5 and return L
-                       51% low with HRM_OK, in double too, with or without
-                       the scan's panels (hrm.h at 43cf576 the same): a
-                       pair's step control, open, not this test's subject) */
+                    /* (not rtol 0.1, float's first: the distance warp is
+                       not the light's, and at rtol 0.1 Fehlberg's step
+                       from 3.26 to 6.1, after one of 0.06 in u whose
+                       estimate was 1e-3 of its share, has its nodes at
+                       4.17 and 5.63, either side of the light's peak at 5
+                       (D = 0.2): L 51% low with HRM_OK, in double too, as
+                       the manual's ACCURACY AND COST says ("Not seen: a
+                       feature between an accepted step's samples (a light
+                       needs its warp"); with the equiangular warp, w = 1,
+                       it is checked) */
                     if (w == 2 && rtol > 0.05) continue;
                     tr_constant(&p, 0.2);
                     if (kind % 2) {
