@@ -5986,7 +5986,6 @@ static HRM_DEVICE HRM__CALL void hrm__wf_split(hrm__ctx *c, hrm__wf *w, int k)
 static HRM_DEVICE HRM__CALL int hrm__wf_sum(hrm__ctx *c, hrm__wf *w, hrm_real acc[HRM__NY], int *pick)
 {
     hrm_real tau[HRM__CH], L[HRM__CH], EL[HRM__CH], Et[HRM__CH], tolL[HRM__CH], tolt[HRM__CH];
-    hrm_real rL[HRM__CH], rt[HRM__CH]; /* 1 / the tolerances (1e30 below 1e-30) */
     hrm_real worst = -1;
     int i, ch, pass, done = 1;
     *pick = -1;
@@ -6010,8 +6009,8 @@ static HRM_DEVICE HRM__CALL int hrm__wf_sum(hrm__ctx *c, hrm__wf *w, hrm_real ac
                     Et[ch] += et;
                     continue;
                 }
-                eL *= rL[ch];
-                et *= rt[ch];
+                eL = tolL[ch] > 0 ? eL / tolL[ch] : eL * HRM__R(1e30);
+                et = tolt[ch] > 0 ? et / tolt[ch] : et * HRM__R(1e30);
                 score = score > eL ? score : eL;
                 score = score > et ? score : et;
             }
@@ -6027,8 +6026,6 @@ static HRM_DEVICE HRM__CALL int hrm__wf_sum(hrm__ctx *c, hrm__wf *w, hrm_real ac
             tolL[ch] = c->rtol * HRM_FABS(L[ch]);
             tolL[ch] = tolL[ch] > c->atol ? tolL[ch] : c->atol;
             tolt[ch] = c->rtol * t;
-            rL[ch] = tolL[ch] > HRM__R(1e-30) ? 1 / tolL[ch] : HRM__R(1e30);
-            rt[ch] = tolt[ch] > HRM__R(1e-30) ? 1 / tolt[ch] : HRM__R(1e30);
             done &= EL[ch] <= tolL[ch] && Et[ch] <= tolt[ch];
             c->wf_tol += tolL[ch];
             acc[ch] = tau[ch];
