@@ -1481,6 +1481,8 @@ typedef struct hrm__ctx {
     int closed;            /* Tr at every node known: a closed form, or the
                               decoupled transmittance layer */
     int decoupled;         /* tau from the transmittance layer */
+    int tr_at_nodes;       /* the driver reads Tr at its nodes (not the
+                              analytic march: its steps' ends) */
     int mcheck;            /* the adaptive rules' nodes are checked against
                               the layer's tau (hrm__medium_miss) */
     int coupled;           /* tau by the rules from the source nodes' sigma_t */
@@ -3583,7 +3585,7 @@ static HRM_DEVICE void hrm__medium_at(hrm__ctx *c, hrm_real s, hrm_real s_raw, h
         memcpy(sa, c->sa, sizeof(hrm_real) * HRM__CH);
         memcpy(ss, c->ss, sizeof(hrm_real) * HRM__CH);
         memcpy(st, c->st, sizeof(hrm_real) * HRM__CH);
-        hrm__node_tr(c, pt, pt->off + (s - s_raw));
+        if (c->tr_at_nodes) hrm__node_tr(c, pt, pt->off + (s - s_raw));
         return;
     }
     /* sigma_t too where the medium check runs: the layer's check below
@@ -4793,7 +4795,7 @@ static HRM_DEVICE HRM__CALL void hrm__ivp_fixed(hrm__ctx *c, const hrm__tableau 
     hrm_real tau_p[HRM__CH]; /* tau at the step's start */
     hrm__nodes_info ni;
     hrm__pt start, end;
-    int have = 0, n, i, j;
+    int have = 0, n, i;
 
     hrm__nodes_init(tb, &ni);
     hrm__ivp_init(c, y);
@@ -4819,14 +4821,15 @@ static HRM_DEVICE HRM__CALL void hrm__ivp_fixed(hrm__ctx *c, const hrm__tableau 
             hrm__deriv(c, &start, y, f[n % 4]);
             memcpy(tau_p, y, sizeof tau_p);
             for (i = 0; i < HRM__NY; ++i) {
-                hrm_real inc = 0;
-                int pos = 1, neg = 1;
-                for (j = 0; j < 4; ++j) {
-                    hrm_real hf = h * f[(n - j) % 4][i];
-                    inc += hrm__ab4_beta[j] * hf;
-                    pos &= hf >= 0;
-                    neg &= hf <= 0;
-                }
+                /* f_n, f_(n-1), f_(n-2), f_(n-3): the history's slots */
+                hrm_real h0 = h * f[n % 4][i], h1 = h * f[(n + 3) % 4][i];
+                hrm_real h2 = h * f[(n + 2) % 4][i], h3 = h * f[(n + 1) % 4][i], inc = 0;
+                int pos = h0 >= 0 && h1 >= 0 && h2 >= 0 && h3 >= 0;
+                int neg = h0 <= 0 && h1 <= 0 && h2 <= 0 && h3 <= 0;
+                inc += hrm__ab4_beta[0] * h0;
+                inc += hrm__ab4_beta[1] * h1;
+                inc += hrm__ab4_beta[2] * h2;
+                inc += hrm__ab4_beta[3] * h3;
                 /* Positivity limiter (optical-depth form): when every history
                    value agrees on the increment's sign, so does the
                    increment. Extrapolating a sharply decaying exp(-tau) S
@@ -6509,6 +6512,7 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, 
     c->per_length = (m->flags & HRM_EMISSION_PER_LENGTH) != 0;
     c->rte = o->form == HRM_FORM_RTE && mi->rte;
     c->use_memo = hrm__is_adaptive(o->method);
+    c->tr_at_nodes = mi->driver != HRM__DRV_MARCH;
     c->memo = memo ? memo->e : NULL;
     c->memo_s = memo ? memo->s : NULL;
     c->memo_bin = memo ? memo->bin : NULL;
