@@ -1462,6 +1462,7 @@ typedef struct hrm__memo_tab {
     hrm__memo e[HRM__MEMO + 1];
     hrm_real s[HRM__MEMO];
     unsigned char bin[HRM__MEMO_BINS];
+    unsigned char sbin[HRM__MEMO]; /* each entry's bin */
 } hrm__memo_tab;
 
 /* The pieces between breakpoints: their ends in p, and a fixed-step
@@ -1501,6 +1502,7 @@ typedef struct hrm__ctx {
     hrm_real *memo_s;           /* the memo's abscissae, side by side for
                                    the search (memo[k].s; hrm__memo_tab) */
     unsigned char *memo_bin;    /* and their count by hash (hrm__memo_bin) */
+    unsigned char *memo_sbin;   /* each entry's bin */
     hrm_real memo_max;          /* the largest ever stored: a march's new
                                    nodes beyond it are not searched for */
     hrm_real err_acc[HRM__CH]; /* adaptive: the accepted error estimates */
@@ -1586,13 +1588,10 @@ static HRM_DEVICE void hrm__fill(hrm_real *v, int n, hrm_real x)
    after it. */
 static HRM_DEVICE void hrm__check(hrm__ctx *c, hrm_real *v, int kind)
 {
-    hrm_real hi = kind == 2 ? 1 : kind == 1 ? c->range : HRM__IS_FLOAT ? HRM__R(FLT_MAX) : HRM__R(DBL_MAX);
-    hrm_real lo = kind == 0 ? -hi : 0;
     int i;
     for (i = 0; i < HRM__CH; ++i) {
-        int ok;
-        if (v[i] >= lo && v[i] <= hi) continue; /* (most values: within) */
-        ok = HRM__FINITE(v[i]) && (kind == 0 || v[i] >= 0) && (kind != 2 || v[i] <= 1);
+        int ok = HRM__FINITE(v[i]) && (kind == 0 || v[i] >= 0) &&
+                 (kind != 2 || v[i] <= 1);
         if (!ok) {
             if (c->status == HRM_OK) c->status = HRM_ERR_CALLBACK_VALUE;
             v[i] = 0;
@@ -3690,9 +3689,11 @@ static HRM_DEVICE void hrm__memo_store(hrm__ctx *c, hrm_real p, hrm_real s, cons
     int k = s == c->s_end ? HRM__MEMO : c->memo_next;
     c->memo[k].s = s;
     if (k < HRM__MEMO) {
-        if (c->nmemo == HRM__MEMO) c->memo_bin[hrm__memo_bin(c->memo_s[k])]--; /* (overwritten) */
+        int b = hrm__memo_bin(s);
+        if (c->nmemo == HRM__MEMO) c->memo_bin[c->memo_sbin[k]]--; /* (overwritten) */
         c->memo_s[k] = s;
-        c->memo_bin[hrm__memo_bin(s)]++;
+        c->memo_sbin[k] = (unsigned char)b;
+        c->memo_bin[b]++;
         if (!(s <= c->memo_max)) c->memo_max = s;
     }
     c->memo[k].p = p;
@@ -6516,6 +6517,7 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, 
     c->memo = memo ? memo->e : NULL;
     c->memo_s = memo ? memo->s : NULL;
     c->memo_bin = memo ? memo->bin : NULL;
+    c->memo_sbin = memo ? memo->sbin : NULL;
     if (memo) memset(memo->bin, 0, sizeof memo->bin);
     /* Tolerances: below 100 epsilons round-off dominates any estimate. */
     c->rtol = o->rtol;
