@@ -5106,7 +5106,11 @@ static HRM_DEVICE HRM__CALL void hrm__ivp_adaptive(hrm__ctx *c, const hrm__table
             accept = 2;
             c->rough_left--;
         }
-        if (!accept && hs <= c->h_min) {
+        /* (h_min's step stretched to the rest of the ray by the sliver
+           rule above, up to 1.1 h_min, counts as h_min: refused, it was
+           tried again the same until the budget ran out - float, the
+           distance warp's end, 99 962 rejections) */
+        if (!accept && hs <= c->h_min * HRM__R(1.1)) {
             /* within the share of a rough step, h_min is no failure */
             accept = 1;
             if (hrm__ratio(c, HRM__JUMP, p, q, y, ynew, err) > 1) hrm__warn(c, hrm__h_min_status(c));

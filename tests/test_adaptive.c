@@ -307,6 +307,13 @@ static void ad_eval_counts(void)
    5. Limits: clipped rtol, h_min, budget, bad budget
    ======================================================================== */
 
+/* Li stepping from 1 to 3 at *(double *)u (h_min at the ray's end). */
+static void ad_step_li(void *u, hrm_real t, hrm_real out[NCH])
+{
+    int c;
+    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)((double)t < *(const double *)u ? 1 : 3);
+}
+
 static void ad_limits(void)
 {
     scene sc;
@@ -397,6 +404,47 @@ static void ad_limits(void)
             if (!(d <= worst)) worst = d;
         }
         CHECK(worst <= 1, "%s: h_min: error / (6.8 h_min max f + 10 rtol L) = %.3g", cfg->name, worst);
+    }
+
+    /* h_min at the ray's end: a jump of Li within h_min of t1 (h_min 1e-4
+       on [0, 1], constants, no jump search). The pairs' last step may be
+       stretched to the rest of the ray, up to 1.1 h_min, so that no
+       sliver is left; refused there, it had been tried again the same
+       until the budget ran out (Dormand-Prince, the jump at 0.9999:
+       99 959 rejections, HRM_WARN_MAX_EVALS). Now taken as a step at
+       h_min: at most a few hundred rejections, HRM_OK or HRM_WARN_H_MIN,
+       L within the h_min bound above (4 * 1.7 h_min max f) plus 10 rtol. */
+    for (i = 0; i < AD_NCFG; ++i) {
+        const ad_cfg *cfg = &ad_cfgs[i];
+        int j, c;
+        if (!is_pair(cfg->method)) continue;
+        for (j = 1; j <= 4; ++j) {
+            double xj = 1 - 2.5e-5 * j, rtol = real_is_float() ? 1e-4 : 1e-6, hmin = 1e-4;
+            hrm_options o = ad_options(cfg, rtol);
+            hrm_medium m;
+            hrm_result r;
+            hrm_status st;
+            memset(&m, 0, sizeof m);
+            m.flags = HRM_MEDIUM_HOMOGENEOUS;
+            m.Li = ad_step_li;
+            m.user = &xj;
+            for (c = 0; c < NCH; ++c) {
+                m.const_sigma_a[c] = (hrm_real)0.1;
+                m.const_sigma_s[c] = (hrm_real)0.5;
+            }
+            o.h_min = (hrm_real)hmin;
+            o.find_jumps = -1;
+            st = hrm_solve(&m, 0, 1, &o, &r);
+            CHECK(st == HRM_OK || st == HRM_WARN_H_MIN, "%s: a jump %g before the end, h_min %g: status %s",
+                  cfg->name, 1 - xj, hmin, hrm_status_string(st));
+            CHECK(r.stats.rejected <= 400, "%s: a jump %g before the end: %ld rejected steps", cfg->name, 1 - xj,
+                  r.stats.rejected);
+            for (c = 0; c < NCH; ++c) {
+                double x = 0.5 / 0.6 * ((1 - exp(-0.6 * xj)) + 3 * (exp(-0.6 * xj) - exp(-0.6)));
+                CHECK_NEAR((double)r.L[c], x, 4 * 1.7 * hmin * 3 * 0.5 + 10 * rtol * x,
+                           "%s: a jump %g before the end: L", cfg->name, 1 - xj);
+            }
+        }
     }
 
     /* Budget. The solve without a budget takes N evaluations; every
