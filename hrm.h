@@ -96,12 +96,12 @@
    ==========================================================================
    Every member is optional; an absent (NULL) term is never called:
      sigma_a, sigma_s  NULL: zero.     sigma_t  NULL: sigma_a + sigma_s.
-     sigma             both coefficients from one call (one density
-                       lookup); with any of the three above:
-                       HRM_ERR_BAD_MEDIUM.
+     sigma             both coefficients from one call (one lookup);
+                       with any of the three above: HRM_ERR_BAD_MEDIUM.
      Le, Li            NULL: absent; never called where sigma_a (Le, unless
                        per length) or sigma_s (Li) is 0 in every channel.
-     transmittance     closed-form Tr(ta, tb) of the eye ray; NULL: hrm
+     transmittance     closed-form Tr(ta, tb) of the eye ray (no scan for
+                       jumps: give sigma's as breakpoints); NULL: hrm
                        integrates sigma_t (TRANSMITTANCE).
    flags |= HRM_MEDIUM_HOMOGENEOUS with const_sigma_a / const_sigma_s: the
    callbacks above are ignored, Tr is exp(-sigma_t (tb - ta)), no medium
