@@ -36,22 +36,46 @@ build() {
     [ $ok -eq 1 ] && "$@" -x none "$objs"/*.o -o "$B/$name" -lm 2>> "$B/$name.log"
 }
 
-# run NAME COMPILER FLAGS... : build the test program and run it
+# run NAME COMPILER FLAGS... : build the test program and start it; it
+# runs while the next configuration builds (two cores: one compiles, one
+# tests), and finish adds it up before the next one starts
+pending_pid=
+pending_name=
 run() {
     name=$1
     configs=$((configs + 1))
     if ! build "$@"; then
+        finish
         echo "$name: build failed"; cat "$B/$name.log"; fail=$((fail + 1)); return
     fi
-    tally "$name" "$B/$name"
+    finish
+    "$B/$name" > "$B/$name.out" 2>&1 &
+    pending_pid=$!
+    pending_name=$name
+}
+
+# finish: wait for the test program run started, and add it up
+finish() {
+    [ -n "$pending_pid" ] || return 0
+    wait "$pending_pid"
+    code=$?
+    pending_pid=
+    tally_out "$pending_name" "$code" "$B/$pending_name.out"
 }
 
 # tally NAME BINARY [ARGS...]: run it, add its "N passed, N failed" line to the sums
 tally() {
     tname=$1
     shift
-    out=$("$@" 2>&1)
-    code=$?
+    "$@" > "$B/$tname.out" 2>&1
+    tally_out "$tname" $? "$B/$tname.out"
+}
+
+# tally_out NAME EXIT_CODE OUTPUT_FILE: the sums from a program's output
+tally_out() {
+    tname=$1
+    code=$2
+    out=$(cat "$3")
     line=$(printf '%s\n' "$out" | grep -E '^[0-9]+ passed, [0-9]+ failed' | tail -n 1)
     if [ -z "$line" ] || [ $code -ne 0 ]; then
         printf '%s\n' "$out" | grep -E 'FAIL|error|runtime|ThreadSanitizer' | head -n 40
@@ -80,6 +104,7 @@ run clang-asan-ubsan    clang -std=c99 -O1 -g $WARN -fsanitize=address,undefined
 run gcc-c99-O2-ch1      gcc   -std=c99 -O2 $WARN -DHRM_CHANNELS=1
 run gcc-c99-O2-ch1-float gcc  -std=c99 -O2 $WARN -DHRM_CHANNELS=1 -DHRM_REAL=float
 run clang-c99-O2-ch8    clang -std=c99 -O2 $WARN -DHRM_CHANNELS=8
+finish
 
 # Implementation compiled as C, used from C++: the extern "C" linkage pair.
 configs=$((configs + 1))
