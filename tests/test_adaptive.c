@@ -307,11 +307,23 @@ static void ad_eval_counts(void)
    5. Limits: clipped rtol, h_min, budget, bad budget
    ======================================================================== */
 
-/* Li stepping from 1 to 3 at *(double *)u (h_min at the ray's end). */
+/* Li stepping from 1 to 3 at *(double *)u (h_min at the ray's end), and
+   the medium of that case (sigma_a 0.1, sigma_s 0.5) as callbacks. */
 static void ad_step_li(void *u, hrm_real t, hrm_real out[NCH])
 {
     int c;
     for (c = 0; c < NCH; ++c) out[c] = (hrm_real)((double)t < *(const double *)u ? 1 : 3);
+}
+
+static void ad_step_sig(void *u, hrm_real t, hrm_real sa[NCH], hrm_real ss[NCH])
+{
+    int c;
+    (void)u;
+    (void)t;
+    for (c = 0; c < NCH; ++c) {
+        sa[c] = (hrm_real)0.1;
+        ss[c] = (hrm_real)0.5;
+    }
 }
 
 static void ad_limits(void)
@@ -407,44 +419,64 @@ static void ad_limits(void)
     }
 
     /* h_min at the ray's end: a jump of Li within h_min of t1 (h_min 1e-4
-       on [0, 1], constants, no jump search). The pairs' last step may be
+       on [0, 1], no jump search), the medium as constants and as sigma
+       callbacks, without a warp and under the distance warp (h_min in u,
+       the jump within 1.1 h_min of u's end). The pairs' last step may be
        stretched to the rest of the ray, up to 1.1 h_min, so that no
        sliver is left; refused there, it had been tried again the same
        until the budget ran out (Dormand-Prince, the jump at 0.9999:
        99 959 rejections, HRM_WARN_MAX_EVALS). Now taken as a step at
        h_min: at most a few hundred rejections, HRM_OK or HRM_WARN_H_MIN,
-       L within the h_min bound above (4 * 1.7 h_min max f) plus 10 rtol. */
+       L within the h_min bound above (4 * 1.7 h_min max f, a step of
+       h_min in u being at most max dt/du = e^0.6 / 0.6 < 3.1 long in t
+       under the distance warp, sigma_ref 0.6) plus 10 rtol. */
     for (i = 0; i < AD_NCFG; ++i) {
         const ad_cfg *cfg = &ad_cfgs[i];
-        int j, c;
+        int j, c, cb, wd;
         if (!is_pair(cfg->method)) continue;
-        for (j = 1; j <= 4; ++j) {
-            double xj = 1 - 2.5e-5 * j, rtol = real_is_float() ? 1e-4 : 1e-6, hmin = 1e-4;
-            hrm_options o = ad_options(cfg, rtol);
-            hrm_medium m;
-            hrm_result r;
-            hrm_status st;
-            memset(&m, 0, sizeof m);
-            m.flags = HRM_MEDIUM_HOMOGENEOUS;
-            m.Li = ad_step_li;
-            m.user = &xj;
-            for (c = 0; c < NCH; ++c) {
-                m.const_sigma_a[c] = (hrm_real)0.1;
-                m.const_sigma_s[c] = (hrm_real)0.5;
-            }
-            o.h_min = (hrm_real)hmin;
-            o.find_jumps = -1;
-            st = hrm_solve(&m, 0, 1, &o, &r);
-            CHECK(st == HRM_OK || st == HRM_WARN_H_MIN, "%s: a jump %g before the end, h_min %g: status %s",
-                  cfg->name, 1 - xj, hmin, hrm_status_string(st));
-            CHECK(r.stats.rejected <= 400, "%s: a jump %g before the end: %ld rejected steps", cfg->name, 1 - xj,
-                  r.stats.rejected);
-            for (c = 0; c < NCH; ++c) {
-                double x = 0.5 / 0.6 * ((1 - exp(-0.6 * xj)) + 3 * (exp(-0.6 * xj) - exp(-0.6)));
-                CHECK_NEAR((double)r.L[c], x, 4 * 1.7 * hmin * 3 * 0.5 + 10 * rtol * x,
-                           "%s: a jump %g before the end: L", cfg->name, 1 - xj);
-            }
-        }
+        for (cb = 0; cb < 2; ++cb)
+            for (wd = 0; wd < 2; ++wd)
+                for (j = 1; j <= 4; ++j) {
+                    double rtol = real_is_float() ? 1e-4 : 1e-6, hmin = 1e-4, xj, x;
+                    hrm_options o = ad_options(cfg, rtol);
+                    hrm_medium m;
+                    hrm_result r;
+                    hrm_status st;
+                    memset(&m, 0, sizeof m);
+                    if (cb) {
+                        m.sigma = ad_step_sig;
+                    } else {
+                        m.flags = HRM_MEDIUM_HOMOGENEOUS;
+                        for (c = 0; c < NCH; ++c) {
+                            m.const_sigma_a[c] = (hrm_real)0.1;
+                            m.const_sigma_s[c] = (hrm_real)0.5;
+                        }
+                    }
+                    /* without a warp 2.5e-5 j before t1; under the distance
+                       warp (u = 1 - e^(-0.6 t)) 2.5e-5 j before u's end */
+                    xj = wd ? -log(exp(-0.6) + 2.5e-5 * j) / 0.6 : 1 - 2.5e-5 * j;
+                    m.Li = ad_step_li;
+                    m.user = &xj;
+                    o.h_min = (hrm_real)hmin;
+                    o.find_jumps = -1;
+                    if (wd) {
+                        o.warp.kind = HRM_WARP_DISTANCE;
+                        o.warp.sigma_ref = (hrm_real)0.6;
+                    }
+                    st = hrm_solve(&m, 0, 1, &o, &r);
+                    CHECK(st == HRM_OK || st == HRM_WARN_H_MIN,
+                          "%s, %s%s: a jump %g before the end, h_min %g: status %s", cfg->name,
+                          cb ? "callbacks" : "constants", wd ? ", distance warp" : "", 1 - xj, hmin,
+                          hrm_status_string(st));
+                    CHECK(r.stats.rejected <= 400, "%s, %s%s: a jump %g before the end: %ld rejected steps",
+                          cfg->name, cb ? "callbacks" : "constants", wd ? ", distance warp" : "", 1 - xj,
+                          r.stats.rejected);
+                    x = 0.5 / 0.6 * ((1 - exp(-0.6 * xj)) + 3 * (exp(-0.6 * xj) - exp(-0.6)));
+                    for (c = 0; c < NCH; ++c)
+                        CHECK_NEAR((double)r.L[c], x, 4 * 1.7 * hmin * (wd ? 3.1 : 1) * 3 * 0.5 + 10 * rtol * x,
+                                   "%s, %s%s: a jump %g before the end: L", cfg->name,
+                                   cb ? "callbacks" : "constants", wd ? ", distance warp" : "", 1 - xj);
+                }
     }
 
     /* Budget. The solve without a budget takes N evaluations; every
