@@ -37,13 +37,26 @@
    (std::thread), the stack set and each method's least stack; writes
    OUT/gpu.png (each method's GPU image and the false-colour difference
    to the CPU's). Usage: gpu [--out DIR] [--size W H] [--stack KiB]
-   [--no-workspace] (each solve's storage on the GPU stack) [--cpu-only]
-   (the CPU's half alone, no CUDA call). */
+   [--no-workspace] (each solve's storage on the GPU stack) [--coupled]
+   (options.tau_mode = HRM_TAU_COUPLED: tau from the sigma samples at the
+   nodes, no transmittance layer) [--cpu-only] (the CPU's half alone, no
+   CUDA call).
+
+   Registers: ptxas gives the kernel about 220 a thread (8 warps an SM).
+   Built with -DGPU_MIN_BLOCKS=8 the kernel asks for 8 blocks of 128 an
+   SM (__launch_bounds__), which caps it at 64 registers (32 warps): the
+   faster build for storage on the stack, which the hardware interleaves
+   across a warp's threads; the slower one with a workspace, whose
+   per-thread slices do not coalesce (README, "Inside a GPU kernel"). */
 #define HRM_IMPLEMENTATION
 #include "hrm.h"
 #include "png.h"
 
 #include <cuda_runtime.h>
+
+#ifndef GPU_MIN_BLOCKS
+#define GPU_MIN_BLOCKS 1 /* blocks of 128 an SM the kernel asks for */
+#endif
 
 #include <chrono>
 #include <cmath>
@@ -67,6 +80,7 @@ struct scene {
     double fov_tan;     /* tan of half the vertical field of view */
     int w, h;
     int workspace;      /* 1: each thread a workspace; 0: none (the stack) */
+    int coupled;        /* 1: options.tau_mode = HRM_TAU_COUPLED */
 };
 
 struct method_cfg {
@@ -161,6 +175,7 @@ static HRM_DEVICE hrm_status solve_pixel(const scene *s, const method_cfg *m, lo
     if (m->steps > 0) opt.steps = m->steps;
     if (m->rtol > 0) opt.rtol = (hrm_real)m->rtol;
     if (hrm_equiangular_warp(o, d, light, &opt.warp) != HRM_OK) opt.warp.kind = HRM_WARP_NONE;
+    if (s->coupled) opt.tau_mode = HRM_TAU_COUPLED;
     opt.workspace = ws_bytes > 0 ? ws : NULL;
     opt.workspace_size = ws_bytes;
     st = hrm_solve(&fog, 0, (hrm_real)(s->wall_z / r.d[2]), &opt, &res);
@@ -171,7 +186,7 @@ static HRM_DEVICE hrm_status solve_pixel(const scene *s, const method_cfg *m, lo
 
 /* One thread's pixels: every nthreads-th from its index, its workspace
    the ws_bytes from ws + id ws_bytes. */
-__global__ void render_kernel(scene s, method_cfg m, unsigned char *ws, size_t ws_bytes, hrm_real *img,
+__global__ void __launch_bounds__(128, GPU_MIN_BLOCKS) render_kernel(scene s, method_cfg m, unsigned char *ws, size_t ws_bytes, hrm_real *img,
                               long *evals, int *status)
 {
     long id = (long)blockIdx.x * blockDim.x + threadIdx.x, n = (long)gridDim.x * blockDim.x;
@@ -195,6 +210,7 @@ static size_t ws_size(const scene &s, const method_cfg *m)
     if (m->rtol > 0) opt.rtol = (hrm_real)m->rtol;
     opt.warp.kind = HRM_WARP_EQUIANGULAR;
     opt.warp.D = 1;
+    if (s.coupled) opt.tau_mode = HRM_TAU_COUPLED;
     return s.workspace ? hrm_workspace_size(&opt) : 0;
 }
 
@@ -315,8 +331,8 @@ static unsigned long long run_probe(const char *self, const scene &s, int m, int
     FILE *f;
     std::snprintf(path, sizeof path, "%s/probe.txt", dir);
     std::remove(path);
-    std::snprintf(cmd, sizeof cmd, "\"%s\" --size %d %d%s --probe %d %d \"%s\" 2>/dev/null", self, s.w, s.h,
-                  s.workspace ? "" : " --no-workspace", m, kib, path);
+    std::snprintf(cmd, sizeof cmd, "\"%s\" --size %d %d%s%s --probe %d %d \"%s\" 2>/dev/null", self, s.w, s.h,
+                  s.workspace ? "" : " --no-workspace", s.coupled ? " --coupled" : "", m, kib, path);
     if (std::system(cmd) == -1) return 0;
     if (!(f = std::fopen(path, "r"))) return 0;
     if (std::fscanf(f, "%15s %llu", word, &h) != 2 || std::strcmp(word, "ok") != 0) h = 0;
@@ -378,7 +394,7 @@ static int cpu_report(const scene &s)
 
 int main(int argc, char **argv)
 {
-    scene s = {{0.4, 0.5, 4.0}, 20.0, {0}, 0.35, 0.8, {0}, 8.0, 0.05, 0.6, 1024, 1024, 1};
+    scene s = {{0.4, 0.5, 4.0}, 20.0, {0}, 0.35, 0.8, {0}, 8.0, 0.05, 0.6, 1024, 1024, 1, 0};
     const char *outdir = "build/gpu", *self = argv[0];
     int stack = -1, least[NMETHODS], fail = 0, ndev = 0, cpu_only = 0, i, m;
     double fixed_bound = sizeof(hrm_real) == sizeof(float) ? 5e-4 : 1e-12;
@@ -399,10 +415,11 @@ int main(int argc, char **argv)
         } else if (!std::strcmp(argv[i], "--stack") && i + 1 < argc) stack = std::atoi(argv[++i]);
         else if (!std::strcmp(argv[i], "--cpu-only")) cpu_only = 1;
         else if (!std::strcmp(argv[i], "--no-workspace")) s.workspace = 0;
+        else if (!std::strcmp(argv[i], "--coupled")) s.coupled = 1;
         else if (!std::strcmp(argv[i], "--probe") && i + 3 < argc)
             return probe(s, std::atoi(argv[i + 1]), std::atoi(argv[i + 2]), argv[i + 3]);
         else {
-            std::fprintf(stderr, "usage: %s [--out DIR] [--size W H] [--stack KiB] [--no-workspace] [--cpu-only]\n", argv[0]);
+            std::fprintf(stderr, "usage: %s [--out DIR] [--size W H] [--stack KiB] [--no-workspace] [--coupled] [--cpu-only]\n", argv[0]);
             return 2;
         }
     }
@@ -425,6 +442,9 @@ int main(int argc, char **argv)
     std::printf("gpu: %s, %d SMs; CPU: %u threads; %d x %d pixels, hrm_real %s, %d channels\n", prop.name,
                 prop.multiProcessorCount, std::thread::hardware_concurrency(), s.w, s.h,
                 sizeof(hrm_real) == sizeof(float) ? "float" : "double", HRM_CHANNELS);
+    std::printf("gpu: storage %s, tau %s, kernel built for %d blocks of 128 an SM (GPU_MIN_BLOCKS)\n",
+                s.workspace ? "in a workspace a thread" : "on the stack", s.coupled ? "coupled" : "by default",
+                GPU_MIN_BLOCKS);
 
     /* the least stack of each method, each size in a child process */
     if (stack < 0) {
