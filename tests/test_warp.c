@@ -1557,6 +1557,131 @@ static void wp_rte_vs_od(void)
     }
 }
 
+/* Thick fog past a point light, the light's equiangular warp: the warp
+   squeezes the ray beyond the light's foot, where the fog's extinction
+   along the camera ray and the shadow ray makes the source fall by
+   e^-(sigma_t (t + r)), into the last samples of u, and there Simpson on
+   the halves and on the whole can agree to a twentieth of their error
+   (four scenes of a random sweep, 33 of its 3000 rays at rtol 2e-4..1e-3
+   off by 3 to 6 rtol with HRM_OK where nested Simpson took that agreement
+   as its estimate; here up to 7.8 rtol, 11 checks failing, float and
+   double, the first scene without a warp too). Every
+   adaptive method, the medium as constants and as sigma callbacks,
+   without a warp, with the distance warp and the equiangular one: HRM_OK
+   means within 3 rtol (the manual's promise). The reference: 8-point
+   Gauss-Legendre on panels graded towards the foot (D 2^k, k = -4..16),
+   64 a piece, within 1e-11 of 32 a piece (checked). */
+typedef struct wp_tt_sc {
+    double delta, D, st, t1, rtol;
+} wp_tt_sc;
+
+static double wp_tt_f(const void *ctx, double t)
+{
+    const wp_tt_sc *s = (const wp_tt_sc *)ctx;
+    double x = t - s->delta, r2 = x * x + s->D * s->D;
+    return 0.5 * s->st / r2 * exp(-s->st * (sqrt(r2) + t));
+}
+
+static void wp_tt_li(void *u, hrm_real t, hrm_real out[NCH])
+{
+    const wp_tt_sc *s = (const wp_tt_sc *)u;
+    double x = (double)t - s->delta, r2 = x * x + s->D * s->D;
+    int c;
+    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)(1 / r2 * exp(-s->st * sqrt(r2)));
+}
+
+static void wp_tt_sigma(void *u, hrm_real t, hrm_real sa[NCH], hrm_real ss[NCH])
+{
+    const wp_tt_sc *s = (const wp_tt_sc *)u;
+    int c;
+    (void)t;
+    for (c = 0; c < NCH; ++c) sa[c] = ss[c] = (hrm_real)(0.5 * s->st);
+}
+
+static double wp_tt_ref(const wp_tt_sc *s, int per)
+{
+    double cut[48], tot = 0;
+    int n = 0, k, j;
+    cut[n++] = 0;
+    cut[n++] = s->t1;
+    for (k = -4; k <= 16; ++k)
+        for (j = -1; j <= 1; j += 2) {
+            double x = s->delta + j * s->D * pow(2, k);
+            if (x > 0 && x < s->t1) cut[n++] = x;
+        }
+    if (s->delta > 0 && s->delta < s->t1) cut[n++] = s->delta;
+    for (k = 1; k < n; ++k)
+        for (j = k; j > 0 && cut[j] < cut[j - 1]; --j) {
+            double x = cut[j];
+            cut[j] = cut[j - 1];
+            cut[j - 1] = x;
+        }
+    for (k = 0; k + 1 < n; ++k)
+        if (cut[k + 1] > cut[k]) tot += gl_integrate(wp_tt_f, s, cut[k], cut[k + 1], per, 8, 0, 0);
+    return tot;
+}
+
+static void wp_thick_tail(void)
+{
+    static const wp_tt_sc sc[4] = {{3.62, 0.0682, 1.48, 6.47, 3.6e-4},
+                                   {3.87, 0.0589, 1.56, 9.53, 5.4e-4},
+                                   {0.673, 0.0877, 0.993, 11.4, 5.8e-4},
+                                   {0.895, 0.0749, 1.35, 3.59, 3.3e-4}};
+    static const hrm_method am[7] = {HRM_NESTED_SIMPSON, HRM_GAUSS_KRONROD, HRM_BOGACKI_SHAMPINE, HRM_DORMAND_PRINCE,
+                                     HRM_FEHLBERG,       HRM_CASH_KARP,     HRM_VERNER};
+    int k, w, cb, mi;
+    for (k = 0; k < 4; ++k) {
+        double ref = wp_tt_ref(&sc[k], 64), ref2 = wp_tt_ref(&sc[k], 32);
+        CHECK(fabs(ref - ref2) <= 1e-11 * ref, "thick tail %d: reference converged (%.3g)", k,
+              fabs(ref - ref2) / ref);
+        for (w = 0; w < 3; ++w)
+            for (cb = 0; cb < 2; ++cb) {
+                int ok = 0, silent = 0;
+                double worst = 0;
+                long ns_evals = 0;
+                for (mi = 0; mi < 7; ++mi) {
+                    hrm_medium m;
+                    hrm_options o = hrm_default_options(am[mi]);
+                    hrm_result r;
+                    hrm_real org[3] = {0, 0, 0}, dir[3] = {1, 0, 0}, L[3];
+                    hrm_status st;
+                    double e;
+                    memset(&m, 0, sizeof m);
+                    m.user = (void *)&sc[k];
+                    m.Li = wp_tt_li;
+                    if (cb) {
+                        m.sigma = wp_tt_sigma;
+                    } else {
+                        int c;
+                        m.flags = HRM_MEDIUM_HOMOGENEOUS;
+                        for (c = 0; c < NCH; ++c) m.const_sigma_a[c] = m.const_sigma_s[c] = (hrm_real)(0.5 * sc[k].st);
+                    }
+                    o.rtol = (hrm_real)sc[k].rtol;
+                    L[0] = (hrm_real)sc[k].delta;
+                    L[1] = 0;
+                    L[2] = (hrm_real)sc[k].D;
+                    if (w == 1) o.warp.kind = HRM_WARP_DISTANCE;
+                    if (w == 2) CHECK_INT(hrm_equiangular_warp(org, dir, L, &o.warp), HRM_OK, "thick tail: warp");
+                    st = hrm_solve(&m, 0, (hrm_real)sc[k].t1, &o, &r);
+                    e = fabs((double)r.L[0] - ref) / ref;
+                    if (am[mi] == HRM_NESTED_SIMPSON) ns_evals = r.stats.evals;
+                    if (st != HRM_OK) continue;
+                    ok++;
+                    silent += !(e <= 3 * sc[k].rtol);
+                    if (e / sc[k].rtol > worst) worst = e / sc[k].rtol;
+                }
+                CHECK_INT(silent, 0, "thick tail %d (%s, %s): adaptive methods HRM_OK beyond 3 rtol (%d HRM_OK of 7, "
+                          "worst %.3g of rtol)", k, w == 0 ? "no warp" : w == 1 ? "distance" : "equiangular",
+                          cb ? "callbacks" : "constants", ok, worst);
+                CHECK(ok >= 4, "thick tail %d (%s, %s): most adaptive methods HRM_OK (%d of 7)", k,
+                      w == 0 ? "no warp" : w == 1 ? "distance" : "equiangular", cb ? "callbacks" : "constants", ok);
+                NOTE("thick tail %d (%s, %s): %d of 7 HRM_OK, worst %.3g of rtol, nested Simpson %ld evaluations", k,
+                     w == 0 ? "no warp" : w == 1 ? "distance" : "equiangular", cb ? "callbacks" : "constants", ok,
+                     worst, ns_evals);
+            }
+    }
+}
+
 /* ======================================================================== */
 
 void warp_tests(void)
@@ -1570,5 +1695,6 @@ void warp_tests(void)
     RUN_GROUP(wp_bad_warps);
     RUN_GROUP(wp_measured_equiangular);
     RUN_GROUP(wp_rte_vs_od);
+    RUN_GROUP(wp_thick_tail);
 }
 
