@@ -7,13 +7,15 @@
 #   make check   the test suite in one configuration (cc -O2, double, 3
 #                channels): the quick tier while working, about 15 s on 2
 #                cores; make test (the matrix) is what CI runs
-#   make bench   the single-ray convergence benchmark and the shadow-ray
-#                benchmark (bench/shadow.c): tables on the terminal, files
+#   make bench   the single-ray convergence benchmark, the shadow-ray
+#                benchmark (bench/shadow.c) and the silent-answer sweep
+#                (bench/sweep.c): tables on the terminal, files
 #                in bench/out/ only (ignored by git)
 #   make bench-quick   the same over short ranges (bench/out/quick/)
 #   make bench-snapshot   make bench, then refresh the committed snapshot
-#                bench/results/ (summary.md, timing.md, the figures but
-#                time.svg) from bench/out/; run it on request, and commit
+#                bench/results/ (summary.md, timing.md, shadow.md, sweep.md,
+#                the figures but time.svg) from bench/out/; run it on
+#                request, and commit
 #   make fuzz    the libFuzzer harness tests/fuzz.c (clang, ASan, UBSan), run
 #                for FUZZ_TIME seconds (default 60) from the seed corpus
 #                tests/corpus/; findings in build/fuzz/crashes/ (needs clang's
@@ -78,9 +80,16 @@ $(BUILD)/bench_shadow: bench/shadow.c hrm.h
 	@mkdir -p $(BUILD)
 	$(CC) -std=c99 -O2 $(WARN) -I. bench/shadow.c -o $@ -lm
 
-bench: $(BUILD)/bench $(BUILD)/bench_shadow
+# silent answers and false alarms in random scenes (bench/sweep.c):
+# thick fog past a point light, and hrm_light_options' lights and spheres
+$(BUILD)/bench_sweep: bench/sweep.c hrm.h
+	@mkdir -p $(BUILD)
+	$(CC) -std=c99 -O2 $(WARN) -I. bench/sweep.c -o $@ -lm
+
+bench: $(BUILD)/bench $(BUILD)/bench_shadow $(BUILD)/bench_sweep
 	./$(BUILD)/bench --out bench/out
 	./$(BUILD)/bench_shadow bench/out
+	./$(BUILD)/bench_sweep bench/out
 
 bench-quick: $(BUILD)/bench
 	./$(BUILD)/bench --quick --out bench/out/quick
@@ -88,7 +97,7 @@ bench-quick: $(BUILD)/bench
 bench-snapshot: bench
 	@mkdir -p bench/results
 	rm -f bench/results/*.svg bench/results/*.md
-	cp bench/out/summary.md bench/out/timing.md bench/out/shadow.md bench/results/
+	cp bench/out/summary.md bench/out/timing.md bench/out/shadow.md bench/out/sweep.md bench/results/
 	for f in bench/out/*.svg; do \
 	    case $$f in */time.svg) ;; *) cp $$f bench/results/ ;; esac; \
 	done

@@ -1,0 +1,432 @@
+/* bench/sweep.c - silent answers in random scenes: how often an adaptive
+   method returns HRM_OK more than 3 rtol off an independent reference (a
+   silent answer, the worst defect), and how often it warns on an answer
+   within rtol (a false alarm). Part of `make bench` (build/bench_sweep);
+   writes its table on stdout and to OUTDIR/sweep.md.
+
+   Two families of camera rays, each solved by every adaptive method with
+   its defaults, rtol log-uniform in 1e-5..1e-1 (float: 2e-4..1e-1):
+     fog     thick homogeneous fog (sigma_t 0.1..2, albedo 1/2) past one
+             point light (its foot 0.5..4.5 along the ray, 0.01..1 off it;
+             the ray 1..11 beyond the foot) with the light's equiangular
+             warp (hrm_equiangular_warp); Li the light through the fog,
+             P / r^2 e^(-sigma_t r). Reference: 8-point Gauss-Legendre on
+             panels graded towards the foot, 64 a piece.
+     lights  1 to 3 point or spot lights and 0 to 2 sphere occluders near
+             a random ray in fog (sigma_t 0.01..1), described to
+             hrm_light_options (its warp and breakpoints; the ray ends at
+             the first sphere it meets); Li the host's: visibility, the
+             spot's cone with a smoothstep falloff, P / r^2 e^(-sigma_t r).
+             Reference: adaptive Simpson in long double between the jumps
+             and kinks of Li, found by a scan of 4000 points of the lights'
+             states (visible, in the cone, in the falloff) and bisection.
+   usage: bench_sweep [outdir] [rays a family] */
+#define HRM_IMPLEMENTATION
+#include "hrm.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define NMETH 6
+#define MAXL 3
+#define MAXS 2
+#define SCAN 4000
+
+static const hrm_method methods[NMETH] = {HRM_NESTED_SIMPSON, HRM_GAUSS_KRONROD,  HRM_DORMAND_PRINCE,
+                                          HRM_CASH_KARP,      HRM_VERNER,         HRM_BOGACKI_SHAMPINE};
+
+typedef struct tally {
+    long ok, silent, warned, false_alarm, evals, runs;
+    double worst; /* the largest error / rtol of an HRM_OK answer */
+} tally;
+
+typedef struct scene {
+    int nl, ns;
+    hrm_light L[MAXL];
+    hrm_sphere S[MAXS];
+    double o[3], d[3], st, ss;
+} scene;
+
+static double uni(unsigned *s)
+{
+    *s = *s * 1664525u + 1013904223u;
+    return (double)(*s >> 8) / 16777216.0;
+}
+
+static double pick_rtol(unsigned *s)
+{
+    double lo = sizeof(hrm_real) == sizeof(float) ? log10(2e-4) : -5;
+    return pow(10, lo + (-1 - lo) * uni(s));
+}
+
+static void count(tally *t, hrm_status st, double err, double rtol, long evals)
+{
+    t->runs++;
+    t->evals += evals;
+    if (st == HRM_OK) {
+        t->ok++;
+        if (err > 3 * rtol) t->silent++;
+        if (err / rtol > t->worst) t->worst = err / rtol;
+    } else if (st > 0) {
+        t->warned++;
+        if (err <= rtol) t->false_alarm++;
+    }
+}
+
+/* ---- fog: one point light, its equiangular warp ---- */
+
+typedef struct fog {
+    double delta, D, st;
+} fog;
+
+static double fog_f(const fog *f, double t)
+{
+    double x = t - f->delta, r2 = x * x + f->D * f->D;
+    return 0.5 * f->st / r2 * exp(-f->st * (sqrt(r2) + t));
+}
+
+static void fog_li(void *user, hrm_real t, hrm_real out[HRM_CHANNELS])
+{
+    const fog *f = (const fog *)user;
+    double x = (double)t - f->delta, r2 = x * x + f->D * f->D;
+    int c;
+    for (c = 0; c < HRM_CHANNELS; ++c) out[c] = (hrm_real)(exp(-f->st * sqrt(r2)) / r2);
+}
+
+static double fog_gl(const fog *f, double a, double b, int n)
+{
+    /* 8-point Gauss-Legendre (Abramowitz and Stegun 25.4.30) */
+    static const double x[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};
+    static const double w[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
+    double h = (b - a) / n, sum = 0;
+    int i, j;
+    for (i = 0; i < n; ++i) {
+        double m = a + (i + 0.5) * h;
+        for (j = 0; j < 4; ++j) sum += w[j] * (fog_f(f, m - 0.5 * h * x[j]) + fog_f(f, m + 0.5 * h * x[j]));
+    }
+    return sum * 0.5 * h;
+}
+
+static double fog_ref(const fog *f, double t1)
+{
+    double cut[48], tot = 0;
+    int n = 0, k, j;
+    cut[n++] = 0;
+    cut[n++] = t1;
+    cut[n++] = f->delta;
+    for (k = -4; k <= 16; ++k)
+        for (j = -1; j <= 1; j += 2) {
+            double x = f->delta + j * f->D * pow(2, k);
+            if (x > 0 && x < t1) cut[n++] = x;
+        }
+    for (k = 1; k < n; ++k)
+        for (j = k; j > 0 && cut[j] < cut[j - 1]; --j) {
+            double x = cut[j];
+            cut[j] = cut[j - 1];
+            cut[j - 1] = x;
+        }
+    for (k = 0; k + 1 < n; ++k)
+        if (cut[k + 1] > cut[k]) tot += fog_gl(f, cut[k], cut[k + 1], 64);
+    return tot;
+}
+
+static void run_fog(int rays, tally t[NMETH])
+{
+    unsigned seed = 1;
+    int i, m;
+    for (i = 0; i < rays; ++i) {
+        fog f;
+        double t1, rtol, ref;
+        hrm_real org[3] = {0, 0, 0}, dir[3] = {1, 0, 0}, lp[3];
+        f.delta = 0.5 + 4 * uni(&seed);
+        f.D = pow(10, -2 + 2 * uni(&seed));
+        f.st = pow(10, -1 + 1.3 * uni(&seed));
+        t1 = f.delta + 1 + 10 * uni(&seed);
+        rtol = pick_rtol(&seed);
+        ref = fog_ref(&f, t1);
+        lp[0] = (hrm_real)f.delta;
+        lp[1] = 0;
+        lp[2] = (hrm_real)f.D;
+        for (m = 0; m < NMETH; ++m) {
+            hrm_medium md;
+            hrm_options o = hrm_default_options(methods[m]);
+            hrm_result r;
+            hrm_status st;
+            int c;
+            memset(&md, 0, sizeof md);
+            md.flags = HRM_MEDIUM_HOMOGENEOUS;
+            md.Li = fog_li;
+            md.user = &f;
+            for (c = 0; c < HRM_CHANNELS; ++c) md.const_sigma_a[c] = md.const_sigma_s[c] = (hrm_real)(0.5 * f.st);
+            o.rtol = (hrm_real)rtol;
+            hrm_equiangular_warp(org, dir, lp, &o.warp);
+            st = hrm_solve(&md, 0, (hrm_real)t1, &o, &r);
+            count(&t[m], st, fabs((double)r.L[0] - ref) / ref, rtol, r.stats.evals);
+        }
+    }
+}
+
+/* ---- lights: hrm_light_options on random lights and spheres ---- */
+
+/* Whether the segment from x to the light at v (x + v) crosses sphere s. */
+static int blocked(const hrm_sphere *s, const long double x[3], const long double v[3], long double r)
+{
+    long double oc[3], b = 0, c = 0, disc;
+    int j;
+    for (j = 0; j < 3; ++j) {
+        oc[j] = x[j] - (long double)s->center[j];
+        b += oc[j] * v[j] / r;
+        c += oc[j] * oc[j];
+    }
+    c -= (long double)s->radius * (long double)s->radius;
+    disc = b * b - c;
+    return disc > 0 && -b + sqrtl(disc) > 0 && -b - sqrtl(disc) < r;
+}
+
+/* Li at t and, through *state, which lights are visible, in their cone
+   and in their falloff (the changes of state are Li's jumps and kinks). */
+static long double lights_li(const scene *sc, long double t, unsigned *state)
+{
+    long double x[3], tot = 0;
+    unsigned s = 0;
+    int k, j, q;
+    for (j = 0; j < 3; ++j) x[j] = (long double)sc->o[j] + t * (long double)sc->d[j];
+    for (k = 0; k < sc->nl; ++k) {
+        const hrm_light *l = &sc->L[k];
+        long double v[3], r2 = 0, r, f = 1;
+        int vis = 1;
+        for (j = 0; j < 3; ++j) {
+            v[j] = (long double)l->position[j] - x[j];
+            r2 += v[j] * v[j];
+        }
+        r = sqrtl(r2);
+        if (l->kind == HRM_LIGHT_SPOT) {
+            long double ca = 0, cc = cosl((long double)l->cone), cf = cosl((long double)l->falloff);
+            for (j = 0; j < 3; ++j) ca += -v[j] / r * (long double)l->direction[j];
+            if (ca > cc) s |= 1u << (4 * k);
+            if (ca > cf) s |= 2u << (4 * k);
+            if (ca <= cc) {
+                f = 0;
+            } else if (ca < cf) {
+                long double u = (ca - cc) / (cf - cc);
+                f = u * u * (3 - 2 * u);
+            }
+        }
+        for (q = 0; q < sc->ns; ++q)
+            if (blocked(&sc->S[q], x, v, r)) {
+                s |= 4u << (4 * k + q);
+                vis = 0;
+            }
+        if (vis && f > 0) tot += f * (long double)l->power / r2 * expl(-(long double)sc->st * r);
+    }
+    if (state) *state = s;
+    return tot;
+}
+
+static void lights_hrm_li(void *user, hrm_real t, hrm_real out[HRM_CHANNELS])
+{
+    double v = (double)lights_li((const scene *)user, (long double)t, NULL);
+    int c;
+    for (c = 0; c < HRM_CHANNELS; ++c) out[c] = (hrm_real)v;
+}
+
+static long double lights_f(const scene *sc, long double t)
+{
+    return (long double)sc->ss * lights_li(sc, t, NULL) * expl(-(long double)sc->st * t);
+}
+
+static long double simpson(const scene *sc, long double a, long double b, long double fa, long double fm,
+                           long double fb, long double whole, long double eps, int depth)
+{
+    long double m = (a + b) / 2, lm = (a + m) / 2, rm = (m + b) / 2, flm = lights_f(sc, lm), frm = lights_f(sc, rm);
+    long double left = (m - a) / 6 * (fa + 4 * flm + fm), right = (b - m) / 6 * (fm + 4 * frm + fb);
+    if (depth > 45 || fabsl(left + right - whole) <= 15 * eps) return left + right + (left + right - whole) / 15;
+    return simpson(sc, a, m, fa, flm, fm, left, eps / 2, depth + 1) +
+           simpson(sc, m, b, fm, frm, fb, right, eps / 2, depth + 1);
+}
+
+/* The reference on [0, t1]: pts holds SCAN + 64 + 2 abscissae. */
+static double lights_ref(const scene *sc, double t1, long double *pts)
+{
+    long double tot = 0, prev = 0;
+    unsigned sp, s;
+    int n = 0, k, it;
+    lights_li(sc, 0, &sp);
+    pts[n++] = 0;
+    for (k = 1; k <= SCAN; ++k) {
+        long double t = (long double)t1 * k / SCAN;
+        lights_li(sc, t, &s);
+        if (s != sp && n < SCAN) {
+            long double a = prev, b = t;
+            for (it = 0; it < 80; ++it) {
+                long double mid = (a + b) / 2;
+                unsigned sm;
+                lights_li(sc, mid, &sm);
+                if (sm == sp) a = mid;
+                else b = mid;
+            }
+            pts[n++] = (a + b) / 2;
+        }
+        if (k % (SCAN / 64) == 0 || k == SCAN) pts[n++] = t;
+        sp = s;
+        prev = t;
+    }
+    for (k = 0; k + 1 < n; ++k) {
+        long double a = pts[k], b = pts[k + 1], fa, fb, fm;
+        if (!(b > a)) continue;
+        fa = lights_f(sc, a);
+        fb = lights_f(sc, b);
+        fm = lights_f(sc, (a + b) / 2);
+        tot += simpson(sc, a, b, fa, fm, fb, (b - a) / 6 * (fa + 4 * fm + fb),
+                       1e-12L * (fabsl(fa) + fabsl(fb) + fabsl(fm)) * (b - a) + 1e-300L, 0);
+    }
+    return (double)tot;
+}
+
+/* A random scene; its ray's end in *t1 (the first sphere it meets); 0 if
+   the camera sits in a sphere or the ray is shorter than 0.05. */
+static int lights_scene(unsigned *seed, scene *sc, double *t1)
+{
+    double len;
+    int k, j;
+    memset(sc, 0, sizeof *sc);
+    sc->nl = 1 + (int)(MAXL * uni(seed));
+    if (uni(seed) < 0.5) sc->nl = 1;
+    sc->ns = (int)(3 * uni(seed));
+    for (k = 0; k < 3; ++k) {
+        sc->o[k] = -1 + 2 * uni(seed);
+        sc->d[k] = -1 + 2 * uni(seed);
+    }
+    len = sqrt(sc->d[0] * sc->d[0] + sc->d[1] * sc->d[1] + sc->d[2] * sc->d[2]);
+    for (k = 0; k < 3; ++k) sc->d[k] /= len;
+    *t1 = 1 + 9 * uni(seed);
+    sc->st = pow(10, -2 + 2 * uni(seed));
+    sc->ss = sc->st * (0.3 + 0.7 * uni(seed));
+    for (k = 0; k < sc->nl; ++k) {
+        hrm_light *l = &sc->L[k];
+        double tf = *t1 * uni(seed), off = pow(10, -2 + 2 * uni(seed)), a[3];
+        l->kind = uni(seed) < 0.5 ? HRM_LIGHT_POINT : HRM_LIGHT_SPOT;
+        for (j = 0; j < 3; ++j) a[j] = -1 + 2 * uni(seed);
+        for (j = 0; j < 3; ++j) l->position[j] = (hrm_real)(sc->o[j] + tf * sc->d[j] + off * a[j]);
+        l->power = (hrm_real)(0.5 + 5 * uni(seed));
+        if (l->kind == HRM_LIGHT_SPOT) {
+            double ax[3], al = 0;
+            for (j = 0; j < 3; ++j) {
+                ax[j] = -1 + 2 * uni(seed);
+                al += ax[j] * ax[j];
+            }
+            al = sqrt(al);
+            for (j = 0; j < 3; ++j) l->direction[j] = (hrm_real)(ax[j] / al);
+            l->cone = (hrm_real)(0.2 + 1.2 * uni(seed));
+            l->falloff = (hrm_real)((double)l->cone * uni(seed));
+        }
+    }
+    for (k = 0; k < sc->ns; ++k) {
+        double tf = *t1 * uni(seed);
+        for (j = 0; j < 3; ++j) sc->S[k].center[j] = (hrm_real)(sc->o[j] + tf * sc->d[j] + 1.5 * (-1 + 2 * uni(seed)));
+        sc->S[k].radius = (hrm_real)(0.05 + 0.5 * uni(seed));
+    }
+    for (k = 0; k < sc->ns; ++k) {
+        double oc[3], b = 0, c = 0, disc, r = (double)sc->S[k].radius;
+        for (j = 0; j < 3; ++j) {
+            oc[j] = sc->o[j] - (double)sc->S[k].center[j];
+            b += oc[j] * sc->d[j];
+            c += oc[j] * oc[j];
+        }
+        c -= r * r;
+        disc = b * b - c;
+        if (c <= 0) return 0;
+        if (disc > 0 && -b - sqrt(disc) > 0 && -b - sqrt(disc) < *t1) *t1 = -b - sqrt(disc);
+    }
+    return *t1 >= 0.05;
+}
+
+static void run_lights(int rays, tally t[NMETH], long double *pts)
+{
+    unsigned seed = 3;
+    int i, m;
+    for (i = 0; i < rays; ++i) {
+        scene sc;
+        double t1, rtol, ref;
+        hrm_real org[3], dir[3];
+        int k;
+        if (!lights_scene(&seed, &sc, &t1)) continue;
+        rtol = pick_rtol(&seed);
+        ref = lights_ref(&sc, t1, pts);
+        if (!(ref > 0)) continue;
+        for (k = 0; k < 3; ++k) {
+            org[k] = (hrm_real)sc.o[k];
+            dir[k] = (hrm_real)sc.d[k];
+        }
+        for (m = 0; m < NMETH; ++m) {
+            hrm_medium md;
+            hrm_options o = hrm_default_options(methods[m]);
+            hrm_ray_plan plan;
+            hrm_result r;
+            hrm_status st;
+            int c;
+            memset(&md, 0, sizeof md);
+            md.flags = HRM_MEDIUM_HOMOGENEOUS;
+            md.Li = lights_hrm_li;
+            md.user = &sc;
+            for (c = 0; c < HRM_CHANNELS; ++c) {
+                md.const_sigma_a[c] = (hrm_real)(sc.st - sc.ss);
+                md.const_sigma_s[c] = (hrm_real)sc.ss;
+            }
+            o.rtol = (hrm_real)rtol;
+            if (hrm_light_options(sc.L, sc.nl, sc.S, sc.ns, org, dir, 0, (hrm_real)t1, &plan, &o) != HRM_OK) continue;
+            st = hrm_solve(&md, 0, (hrm_real)t1, &o, &r);
+            count(&t[m], st, fabs((double)r.L[0] - ref) / ref, rtol, r.stats.evals);
+        }
+    }
+}
+
+static void report(FILE *f, const char *name, int rays, const tally t[NMETH])
+{
+    int m;
+    fprintf(f, "\n### %s (%d rays)\n\n", name, rays);
+    fprintf(f, "| method | runs | HRM_OK | silent (> 3 rtol) | worst HRM_OK / rtol | warned | false alarms (within rtol) "
+               "| evaluations, mean |\n|---|---:|---:|---:|---:|---:|---:|---:|\n");
+    for (m = 0; m < NMETH; ++m)
+        fprintf(f, "| %s | %ld | %ld | %ld | %.3g | %ld | %ld | %.1f |\n", hrm_method_name(methods[m]), t[m].runs,
+                t[m].ok, t[m].silent, t[m].worst, t[m].warned, t[m].false_alarm,
+                t[m].runs ? (double)t[m].evals / (double)t[m].runs : 0.0);
+}
+
+int main(int argc, char **argv)
+{
+    const char *dir = argc > 1 ? argv[1] : "bench/out";
+    int rays = argc > 2 ? atoi(argv[2]) : 4000, k;
+    tally fog_t[NMETH], light_t[NMETH];
+    long double *pts = (long double *)malloc(sizeof(long double) * (SCAN + 66));
+    char path[1024];
+    FILE *f;
+    if (!pts || rays < 1) return 2;
+    memset(fog_t, 0, sizeof fog_t);
+    memset(light_t, 0, sizeof light_t);
+    run_fog(rays, fog_t);
+    run_lights(rays, light_t, pts);
+    free(pts);
+    snprintf(path, sizeof path, "%s/sweep.md", dir);
+    f = fopen(path, "w");
+    for (k = 0; k < 2; ++k) {
+        FILE *out = k ? f : stdout;
+        if (!out) continue;
+        fprintf(out, "## Silent answers in random scenes (hrm_real %s)\n\n`build/bench_sweep` (part of `make bench`); "
+                     "bench/sweep.c says what each family is. Each ray at one rtol, log-uniform in %s..1e-1, every "
+                     "adaptive method with its defaults.\n",
+                sizeof(hrm_real) == sizeof(float) ? "float" : "double",
+                sizeof(hrm_real) == sizeof(float) ? "2e-4" : "1e-5");
+        report(out, "fog: thick fog past a point light, its equiangular warp", rays, fog_t);
+        report(out, "lights: 1-3 point and spot lights, 0-2 spheres, hrm_light_options", rays, light_t);
+    }
+    if (!f) {
+        fprintf(stderr, "bench_sweep: cannot write %s\n", path);
+        return 1;
+    }
+    fclose(f);
+    printf("\nwrote %s\n", path);
+    return 0;
+}
