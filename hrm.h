@@ -936,10 +936,11 @@ typedef struct hrm_ray_plan {
    light left out of the mixture (beyond HRM_MAX_LIGHTS), a spot's cone
    and falloff edges, each sphere's shadow from each light (a cone from a
    point or spot light, a cylinder behind it for a directional one), and
-   where two of the mixture's lights light the ray alike and most, if the
-   band where one's irradiance goes from 4 to 1/4 of the other's holds
-   less than 1/48 of u (there the warp squeezes the change between them);
-   the first HRM_MAX_BREAKS in order along the ray. Returns
+   where two of the mixture's lights light the ray alike and most, the
+   edges of the band where one's irradiance goes from 4 to 1/4 of the
+   other's if it holds less than 1/48 of u (there the warp squeezes the
+   change between them); the first HRM_MAX_BREAKS in order along the ray.
+   Returns
    HRM_ERR_NULL_ARGUMENT (a NULL pointer, or NULL lights or spheres with a
    count > 0), HRM_ERR_BAD_WARP (dir zero, a value not finite, t1 < t0, a
    count negative, an unknown kind, power not above 0, radius negative,
@@ -3284,31 +3285,49 @@ static HRM_DEVICE void hrm__plan_add(hrm_real *list, int *n, hrm_real t, hrm_rea
    apart (the medium along their shadow rays, a spot's falloff) within a
    band of u that a rule's first nodes can straddle: two point lights,
    nested Simpson at rtol 1.4e-4, 21 evaluations, L 1.4e-3 off with HRM_OK.
-   A breakpoint where the two light the ray alike and most, wherever their
-   band (irradiance i over j from 4 to 1/4, to first order) holds less than
+   Where the two light the ray alike and most and their band (irradiance i
+   over j from 4 to 1/4, to first order about the crossing) holds less than
    a third of the first nodes' spacing, 1/48 of u (nested Simpson's 4
-   panels: 16 intervals): there a piece ends. P_i / r_i^2 = P_j / r_j^2 with
-   r^2 = D^2 + x^2, x = t - delta: a quadratic in s = t - delta_i. */
+   panels: 16 intervals), the band's edges are breakpoints. P_i / r_i^2 = e
+   P_j / r_j^2 with r^2 = D^2 + x^2, x = t - delta: a quadratic in s = t -
+   delta_i, for e = 1 (the crossing), 1/4 and 4 (the edges). */
+/* Where light i's irradiance is e times light j's: s = t - delta_i for
+   the roots of P_i (D_j^2 + (s - dl)^2) = e P_j (D_i^2 + s^2); how many. */
+static HRM_DEVICE int hrm__mix_ratio_at(const hrm_ray_plan *p, int i, int j, double e, double s[2])
+{
+    double Pi = p->c[i] * p->D[i], Pj = p->c[j] * p->D[j], dl = p->delta[j] - p->delta[i];
+    return hrm__quad_roots(Pi - e * Pj, -2 * Pi * dl,
+                           Pi * (p->D[j] * p->D[j] + dl * dl) - e * Pj * p->D[i] * p->D[i], s);
+}
+
 static HRM_DEVICE void hrm__mix_transitions(const hrm_ray_plan *p, hrm_real t0, hrm_real t1, hrm_real *cand, int *n)
 {
-    int i, j, k, r, m;
+    int i, j, k, r, m, h;
     for (i = 0; i < p->nmix; ++i)
         for (j = i + 1; j < p->nmix; ++j) {
-            double Pi = p->c[i] * p->D[i], Pj = p->c[j] * p->D[j], dl = p->delta[j] - p->delta[i], s[2];
-            m = hrm__quad_roots(Pi - Pj, -2 * Pi * dl, Pi * (p->D[j] * p->D[j] + dl * dl) - Pj * p->D[i] * p->D[i],
-                                s);
+            double s[2], e;
+            m = hrm__mix_ratio_at(p, i, j, 1, s);
             for (r = 0; r < m; ++r) {
                 double t = p->delta[i] + s[r], xi = s[r], xj = t - p->delta[j];
-                double ri = p->D[i] * p->D[i] + xi * xi, rj = p->D[j] * p->D[j] + xj * xj, e = Pi / ri;
+                double ri = p->D[i] * p->D[i] + xi * xi, rj = p->D[j] * p->D[j] + xj * xj, Ii = p->c[i] * p->D[i] / ri;
                 double slope = fabs(2 * xj / rj - 2 * xi / ri); /* d/dt ln(I_i / I_j) */
                 int top = HRM__FINITE(t) && t > (double)t0 && t < (double)t1;
                 for (k = 0; k < p->nmix && top; ++k) {
                     double x = t - p->delta[k];
-                    top = k == i || k == j || p->c[k] * p->D[k] / (p->D[k] * p->D[k] + x * x) <= e;
+                    top = k == i || k == j || p->c[k] * p->D[k] / (p->D[k] * p->D[k] + x * x) <= Ii;
                 }
-                /* the band: ln 16 / slope of t, hrm__mix_du per unit of t */
-                if (top && slope > 0 && hrm__mix_du(p, t) * (2.7725887222397811 / slope) < p->u1 / 48)
-                    hrm__plan_add(cand, n, (hrm_real)t, t0, t1);
+                /* the band: ln 16 / slope of t, hrm__mix_du per unit of t;
+                   its edges the breakpoints (the roots nearest the
+                   crossing), so that the change is a piece of its own,
+                   never at a piece's end, where Gauss-Kronrod has no node */
+                if (!(top && slope > 0 && hrm__mix_du(p, t) * (2.7725887222397811 / slope) < p->u1 / 48)) continue;
+                for (e = 0.25; e <= 4; e *= 16) {
+                    double q[2], best = HUGE_VAL;
+                    int nq = hrm__mix_ratio_at(p, i, j, e, q);
+                    for (h = 0; h < nq; ++h)
+                        if (HRM__FINITE(q[h]) && fabs(q[h] - xi) < fabs(best - xi)) best = q[h];
+                    if (best < HUGE_VAL) hrm__plan_add(cand, n, (hrm_real)(p->delta[i] + best), t0, t1);
+                }
             }
         }
 }

@@ -1299,8 +1299,9 @@ static void br_lights(void)
    through exp(-sigma_t r). The mixture warp gives the stretch between the
    peaks about 0.4% of u, and the source per unit of u falls 7% across it
    (the far light's shadow ray crosses more fog), which a rule's first nodes
-   can straddle: the plan has a breakpoint where the two irradiances are
-   equal (a closed form, within rounding), and every adaptive method's
+   can straddle: the plan has breakpoints at the edges of the band where
+   one light's irradiance goes from 4 to 1/4 of the other's (closed forms
+   about the crossing, within rounding), and every adaptive method's
    HRM_OK is within 3 rtol (the manual's promise; rtol 1.4e-4, 2e-4 in
    float), the medium as constants and as sigma callbacks. Without the
    breakpoint nested Simpson returned HRM_OK 10 rtol off. The reference:
@@ -1350,7 +1351,7 @@ static void br_transition(void)
     static const hrm_method am[7] = {HRM_NESTED_SIMPSON, HRM_GAUSS_KRONROD, HRM_BOGACKI_SHAMPINE, HRM_DORMAND_PRINCE,
                                      HRM_FEHLBERG,       HRM_CASH_KARP,     HRM_VERNER};
     const double t1 = 6.8446667, rtol = real_is_float() ? 2e-4 : 1.4e-4;
-    double cut[4] = {0, sc.x[0], sc.x[1], t1}, ref = 0, ref2 = 0, tx, A, B, C, dl;
+    double cut[4] = {0, sc.x[0], sc.x[1], t1}, ref = 0, ref2 = 0, tx, A, B, C, dl, edge[2];
     hrm_light L[2];
     hrm_real org[3] = {0, 0, 0}, dir[3] = {1, 0, 0};
     hrm_ray_plan plan;
@@ -1368,18 +1369,30 @@ static void br_transition(void)
         L[i].position[2] = (hrm_real)sc.D[i];
         L[i].power = (hrm_real)sc.P[i];
     }
-    /* P0 (D1^2 + (s - dl)^2) = P1 (D0^2 + s^2), s = t - x0: the root
-       between the feet */
+    /* P0 (D1^2 + (s - dl)^2) = e P1 (D0^2 + s^2), s = t - x0: for e = 1
+       the crossing, the root between the feet; for e = 4 and 1/4 the
+       band's edges, the roots nearest it */
     dl = sc.x[1] - sc.x[0];
     A = sc.P[0] - sc.P[1];
     B = -2 * sc.P[0] * dl;
     C = sc.P[0] * (sc.D[1] * sc.D[1] + dl * dl) - sc.P[1] * sc.D[0] * sc.D[0];
     tx = sc.x[0] + (-B - sqrt(B * B - 4 * A * C)) / (2 * A);
     CHECK(tx > sc.x[0] && tx < sc.x[1], "transition: the crossing between the feet (%.6g)", tx);
+    for (i = 0; i < 2; ++i) {
+        double e = i ? 0.25 : 4, r1, r2;
+        A = sc.P[0] - e * sc.P[1];
+        C = sc.P[0] * (sc.D[1] * sc.D[1] + dl * dl) - e * sc.P[1] * sc.D[0] * sc.D[0];
+        r1 = sc.x[0] + (-B - sqrt(B * B - 4 * A * C)) / (2 * A);
+        r2 = sc.x[0] + (-B + sqrt(B * B - 4 * A * C)) / (2 * A);
+        edge[i] = fabs(r1 - tx) < fabs(r2 - tx) ? r1 : r2;
+    }
+    CHECK(edge[0] < tx && tx < edge[1], "transition: the band's edges about the crossing (%.6g, %.6g)", edge[0],
+          edge[1]);
     CHECK_INT(hrm_light_options(L, 2, NULL, 0, org, dir, 0, (hrm_real)t1, &plan, &o), HRM_OK, "transition: status");
-    CHECK(plan.nmix == 2 && o.nbreaks == 1 && fabs((double)o.breaks[0] - tx) <= 64 * real_eps() * tx,
-          "transition: one breakpoint where the irradiances are equal (%d: %.9g, want %.9g)", o.nbreaks,
-          o.nbreaks ? (double)o.breaks[0] : 0.0, tx);
+    CHECK(plan.nmix == 2 && o.nbreaks == 2 && fabs((double)o.breaks[0] - edge[0]) <= 64 * real_eps() * edge[0] &&
+              fabs((double)o.breaks[1] - edge[1]) <= 64 * real_eps() * edge[1],
+          "transition: breakpoints at the band's edges (%d: %.9g %.9g, want %.9g %.9g)", o.nbreaks,
+          o.nbreaks ? (double)o.breaks[0] : 0.0, o.nbreaks > 1 ? (double)o.breaks[1] : 0.0, edge[0], edge[1]);
     for (cb = 0; cb < 2; ++cb) {
         int mi, ok = 0, silent = 0;
         double worst = 0;
