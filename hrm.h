@@ -342,23 +342,23 @@
    least the 4th difference its 3rd and 2nd predict; Gauss-Kronrod's |K -
    G|; each scaled once splits show its rate; the pairs' embedded estimate
    and their stage values' Newton series, the larger), raised where nodes
-   miss the layer's 1 - Tr (decoupled tau: nodes that alias the medium). An interval whose error does not shrink
-   (a jump, noise) may take rtol/16 of |L|, 16 times a call.
-   The worst HRM_OK run on the smooth scenes is within 2.3 rtol, every
-   default (bench/results/summary.md). Missed tolerances return the best
-   estimate and a warning: H_MIN (a step at h_min failed), MAX_EVALS
-   (stats.evals never exceeds max_evals, a user warp's calls 4 max_evals),
-   STORAGE (a finish HRM_MAX_DEPTH deep), ROUNDOFF (bisection no longer
-   helps, or t cannot resolve a step), TOLERANCE (the accepted estimates
-   exceed atol + 3 rtol |L|, also after one more pass at the scale found),
-   RTOL_CLIPPED (rtol below 100 epsilons, raised to it).
-   result.error: the accepted estimates' sum per channel, any status (-1:
-   fixed steps). Every L (not the RTE form's fixed steps or Le per length)
-   lies in [0, the largest S/sigma_t sampled times 1 - Tr], cuts counted in
-   result.error (fixed steps to 2x, Monte Carlo any; past: bound, TOLERANCE).
-   Not seen: a feature between an accepted step's samples (a light needs
-   its warp, an occluder its breakpoints; constants and callbacks may see
-   it apart). Munoz's, Gonterman's controllers (eq. 12, 3.4) unverified.
+   miss the layer's 1 - Tr (decoupled tau: nodes that alias the medium).
+   An interval whose error does not shrink (a jump, noise) may take
+   rtol/16 of |L|, 16 times a call. The worst HRM_OK run on the smooth
+   scenes is within 2.3 rtol, every default (bench/results/summary.md).
+   Missed tolerances return the best estimate and a warning: H_MIN (a step
+   at h_min failed), MAX_EVALS (stats.evals <= max_evals, a user warp's
+   calls 4 max_evals), STORAGE (a finish HRM_MAX_DEPTH deep), ROUNDOFF
+   (bisection no longer helps, or t cannot resolve a step), TOLERANCE (the
+   accepted estimates exceed atol + 3 rtol |L|, also after a pass at the
+   scale found), RTOL_CLIPPED (rtol < 100 eps, raised); a piece's (between
+   breakpoints) H_MIN or TOLERANCE only where all exceed atol + rtol |L|.
+   result.error: their sum per channel, any status (-1: fixed steps). Every
+   L (but the RTE form's fixed steps, Le per length) is in [0, the largest
+   S/sigma_t sampled times 1 - Tr], cuts in result.error (fixed steps to 2x,
+   Monte Carlo any; past: bound, TOLERANCE). Not seen: a feature between a
+   step's samples (a light needs its warp, an occluder its breakpoints).
+   Munoz's, Gonterman's controllers (eq. 12, 3.4) unverified.
 
    ==========================================================================
    IMPORTANCE SAMPLING (options.warp; Munoz 2014 s.5)
@@ -3279,6 +3279,15 @@ static HRM_DEVICE void hrm__plan_add(hrm_real *list, int *n, hrm_real t, hrm_rea
     if (t > t0 && t < t1 && *n < 2 * HRM_MAX_BREAKS) list[(*n)++] = t;
 }
 
+/* Where light i's irradiance is e times light j's: s = t - delta_i for
+   the roots of P_i (D_j^2 + (s - dl)^2) = e P_j (D_i^2 + s^2); how many. */
+static HRM_DEVICE int hrm__mix_ratio_at(const hrm_ray_plan *p, int i, int j, double e, double s[2])
+{
+    double Pi = p->c[i] * p->D[i], Pj = p->c[j] * p->D[j], dl = p->delta[j] - p->delta[i];
+    return hrm__quad_roots(Pi - e * Pj, -2 * Pi * dl,
+                           Pi * (p->D[j] * p->D[j] + dl * dl) - e * Pj * p->D[i] * p->D[i], s);
+}
+
 /* Where the mixture passes from light i to light j: between two peaks the
    warp gives the ray little of u, and the source per unit of u, flat where
    one light's irradiance rules, changes there by what sets the two lights
@@ -3291,15 +3300,6 @@ static HRM_DEVICE void hrm__plan_add(hrm_real *list, int *n, hrm_real t, hrm_rea
    panels: 16 intervals), the band's edges are breakpoints. P_i / r_i^2 = e
    P_j / r_j^2 with r^2 = D^2 + x^2, x = t - delta: a quadratic in s = t -
    delta_i, for e = 1 (the crossing), 1/4 and 4 (the edges). */
-/* Where light i's irradiance is e times light j's: s = t - delta_i for
-   the roots of P_i (D_j^2 + (s - dl)^2) = e P_j (D_i^2 + s^2); how many. */
-static HRM_DEVICE int hrm__mix_ratio_at(const hrm_ray_plan *p, int i, int j, double e, double s[2])
-{
-    double Pi = p->c[i] * p->D[i], Pj = p->c[j] * p->D[j], dl = p->delta[j] - p->delta[i];
-    return hrm__quad_roots(Pi - e * Pj, -2 * Pi * dl,
-                           Pi * (p->D[j] * p->D[j] + dl * dl) - e * Pj * p->D[i] * p->D[i], s);
-}
-
 static HRM_DEVICE void hrm__mix_transitions(const hrm_ray_plan *p, hrm_real t0, hrm_real t1, hrm_real *cand, int *n)
 {
     int i, j, k, r, m, h;
@@ -6881,6 +6881,12 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__solve_broken_in(hrm__ctx *c,
     hrm_real yk[HRM__NY], err[HRM__CH], acc[HRM__CH];
     int n = c->nbrk + 1, *N = t->N, k, i, fixed;
     long max_evals = c->max_evals;
+    /* a piece's tolerance is of its own L: a piece that missed it (a step
+       at h_min, or its estimates' sum) warns only where the pieces'
+       estimates together miss the ray's (the PI control's sum; the RTE
+       form's local errors bound nothing) */
+    int judge = !c->rte && (mi->family != HRM__PAIR || o->control == HRM_CONTROL_PI);
+    hrm_status missed = HRM_OK;
 
     P[0] = pa;
     P[n] = pb;
@@ -6932,7 +6938,15 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__solve_broken_in(hrm__ctx *c,
             N[k] = (int)(hrm__share(o->steps, P[k], P[k + 1], pa, pb) + HRM__R(0.5));
             if (N[k] < hrm__panels_least(o)) N[k] = hrm__panels_least(o);
         }
-        hrm__dispatch_one(c, o, N[k], yk);
+        {
+            hrm_status before = c->warning;
+            hrm__dispatch_one(c, o, N[k], yk);
+            if (judge && n > 1 && c->warning != before &&
+                (c->warning == HRM_WARN_H_MIN || c->warning == HRM_WARN_TOLERANCE)) {
+                if (missed == HRM_OK) missed = c->warning;
+                c->warning = before;
+            }
+        }
         c->max_evals = max_evals;
         for (i = 0; i < HRM__CH; ++i) {
             /* Tr up to the piece's start, where the piece's L is relative */
@@ -6946,6 +6960,12 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__solve_broken_in(hrm__ctx *c,
            pieces multiply) */
         hrm__state_check(c, y, HRM__NY);
         hrm__state_check(c, acc, HRM__CH);
+    }
+    if (missed != HRM_OK) {
+        int held = 1;
+        for (i = 0; i < HRM__CH; ++i)
+            held &= err[i] <= c->atol + c->rtol * HRM_FABS(y[HRM__CH + i]) + 16 * HRM__EPS * HRM_FABS(y[HRM__CH + i]);
+        if (!held) hrm__warn(c, missed);
     }
     memcpy(y, acc, sizeof acc);
     memcpy(c->err_acc, err, sizeof err);
