@@ -1292,21 +1292,83 @@ static void br_lights(void)
     }
 }
 
-/* Two point lights near the ray whose shadow rays cross different fog (a
-   scene of a random sweep of hrm_light_options): feet 0.245 and 4.317, 0.0207
-   and 0.173 off the ray, powers 2.05 and 1.82, the ray [0, 6.845] in fog of
-   sigma_t 0.0168 and sigma_s 0.00698; Li the host's, each light's P / r^2
-   through exp(-sigma_t r). The mixture warp gives the stretch between the
-   peaks about 0.4% of u, and the source per unit of u falls 7% across it
-   (the far light's shadow ray crosses more fog), which a rule's first nodes
-   can straddle: the plan has breakpoints at the edges of the band where
-   one light's irradiance goes from 4 to 1/4 of the other's (closed forms
-   about the crossing, within rounding), and every adaptive method's
-   HRM_OK is within 3 rtol (the manual's promise; rtol 1.4e-4, 2e-4 in
-   float), the medium as constants and as sigma callbacks. Without the
-   breakpoint nested Simpson returned HRM_OK 10 rtol off. The reference:
-   composite 8-point Gauss-Legendre split at the feet, 4000 panels a piece,
-   within 1e-12 of 2000 (checked). */
+/* The fog of the light-description tests below (the first member of
+   each scene, the callbacks' user data): sigma_t and sigma_s. */
+typedef struct br_fog {
+    double st, ss;
+} br_fog;
+
+static void br_fog_sig(void *u, hrm_real t, hrm_real sa[NCH], hrm_real ss[NCH])
+{
+    const br_fog *f = (const br_fog *)u;
+    int c;
+    (void)t;
+    for (c = 0; c < NCH; ++c) {
+        sa[c] = (hrm_real)(f->st - f->ss);
+        ss[c] = (hrm_real)f->ss;
+    }
+}
+
+/* Every adaptive method with its defaults at rtol, through the plan of
+   lights L[0..nl) on the ray [0, t1], the fog as constants (cb 0) or as
+   sigma callbacks (cb 1), against ref: HRM_OK answers, those beyond 3 rtol
+   (silent), warnings on answers within rtol (alarms), the worst HRM_OK
+   error over rtol, nested Simpson's status and evaluations. */
+typedef struct br_tally {
+    int ok, silent, alarms;
+    double worst;
+    hrm_status ns_st;
+    long ns_evals;
+} br_tally;
+
+static br_tally br_every_method(const br_fog *fog, hrm_spectrum_fn li, const hrm_light *L, int nl,
+                                const hrm_real org[3], const hrm_real dir[3], double t1, double rtol, double ref,
+                                int cb)
+{
+    static const hrm_method am[7] = {HRM_NESTED_SIMPSON, HRM_GAUSS_KRONROD, HRM_BOGACKI_SHAMPINE, HRM_DORMAND_PRINCE,
+                                     HRM_FEHLBERG,       HRM_CASH_KARP,     HRM_VERNER};
+    br_tally k;
+    int mi;
+    memset(&k, 0, sizeof k);
+    for (mi = 0; mi < 7; ++mi) {
+        hrm_medium m;
+        hrm_options o = hrm_default_options(am[mi]);
+        hrm_ray_plan plan;
+        hrm_result r;
+        hrm_status st;
+        double e;
+        memset(&m, 0, sizeof m);
+        m.user = (void *)fog;
+        m.Li = li;
+        if (cb) {
+            m.sigma = br_fog_sig;
+        } else {
+            int c;
+            m.flags = HRM_MEDIUM_HOMOGENEOUS;
+            for (c = 0; c < NCH; ++c) {
+                m.const_sigma_a[c] = (hrm_real)(fog->st - fog->ss);
+                m.const_sigma_s[c] = (hrm_real)fog->ss;
+            }
+        }
+        o.rtol = (hrm_real)rtol;
+        hrm_light_options(L, nl, NULL, 0, org, dir, 0, (hrm_real)t1, &plan, &o);
+        st = hrm_solve(&m, 0, (hrm_real)t1, &o, &r);
+        e = fabs((double)r.L[0] - ref) / ref;
+        if (am[mi] == HRM_NESTED_SIMPSON) {
+            k.ns_st = st;
+            k.ns_evals = r.stats.evals;
+        }
+        if (st == HRM_OK) {
+            k.ok++;
+            k.silent += !(e <= 3 * rtol);
+            if (e / rtol > k.worst) k.worst = e / rtol;
+        } else if (st > 0) {
+            k.alarms += e <= rtol;
+        }
+    }
+    return k;
+}
+
 /* A warning only where the answer may miss the tolerance: a spot light
    0.01 off the ray (a scene of a random sweep of hrm_light_options), its
    cone and falloff edges four breakpoints, the falloff's pieces 0.013 and
@@ -1321,7 +1383,8 @@ static void br_lights(void)
    plan's breakpoints (which the spot test above checks against closed
    forms), within 1e-10 of 2000 (checked). */
 typedef struct br_fa_sc {
-    double o[3], d[3], st, ss;
+    br_fog fog;
+    double o[3], d[3];
     hrm_light L;
 } br_fa_sc;
 
@@ -1340,13 +1403,13 @@ static double br_fa_li1(const br_fa_sc *s, double t)
         double u = (ca - cc) / (cf - cc);
         f = u * u * (3 - 2 * u);
     }
-    return f * (double)s->L.power / r2 * exp(-s->st * r);
+    return f * (double)s->L.power / r2 * exp(-s->fog.st * r);
 }
 
 static double br_fa_f(const void *ctx, double t)
 {
     const br_fa_sc *s = (const br_fa_sc *)ctx;
-    return s->ss * br_fa_li1(s, t) * exp(-s->st * t);
+    return s->fog.ss * br_fa_li1(s, t) * exp(-s->fog.st * t);
 }
 
 static void br_fa_li(void *u, hrm_real t, hrm_real out[NCH])
@@ -1355,30 +1418,17 @@ static void br_fa_li(void *u, hrm_real t, hrm_real out[NCH])
     for (c = 0; c < NCH; ++c) out[c] = (hrm_real)br_fa_li1((const br_fa_sc *)u, (double)t);
 }
 
-static void br_fa_sig(void *u, hrm_real t, hrm_real sa[NCH], hrm_real ss[NCH])
-{
-    const br_fa_sc *s = (const br_fa_sc *)u;
-    int c;
-    (void)t;
-    for (c = 0; c < NCH; ++c) {
-        sa[c] = (hrm_real)(s->st - s->ss);
-        ss[c] = (hrm_real)s->ss;
-    }
-}
-
 static void br_false_alarm(void)
 {
-    static const hrm_method am[7] = {HRM_NESTED_SIMPSON, HRM_GAUSS_KRONROD, HRM_BOGACKI_SHAMPINE, HRM_DORMAND_PRINCE,
-                                     HRM_FEHLBERG,       HRM_CASH_KARP,     HRM_VERNER};
     const double t1 = 5.0026133060455322, rtol = 2.9001723080613424e-4;
+    static const double o3[3] = {-0.07892763614654541, -0.66526186466217041, -0.80895602703094482};
+    static const double d3[3] = {-0.44168334084082861, -0.30747427296501073, -0.84283770554497772};
     br_fa_sc sc;
     hrm_ray_plan plan;
     hrm_options o = hrm_default_options(HRM_NESTED_SIMPSON);
     hrm_real org[3], dir[3];
     double cut[HRM_MAX_BREAKS + 2], ref = 0, ref2 = 0;
     int i, cb, n;
-    static const double o3[3] = {-0.07892763614654541, -0.66526186466217041, -0.80895602703094482};
-    static const double d3[3] = {-0.44168334084082861, -0.30747427296501073, -0.84283770554497772};
     memset(&sc, 0, sizeof sc);
     for (i = 0; i < 3; ++i) {
         sc.o[i] = o3[i];
@@ -1386,8 +1436,8 @@ static void br_false_alarm(void)
         org[i] = (hrm_real)o3[i];
         dir[i] = (hrm_real)d3[i];
     }
-    sc.st = 0.086927511583841308;
-    sc.ss = 0.06295536693023869;
+    sc.fog.st = 0.086927511583841308;
+    sc.fog.ss = 0.06295536693023869;
     sc.L.kind = HRM_LIGHT_SPOT;
     sc.L.position[0] = (hrm_real)-1.9571668329204404;
     sc.L.position[1] = (hrm_real)-1.9727310603300254;
@@ -1411,49 +1461,33 @@ static void br_false_alarm(void)
     }
     CHECK(fabs(ref - ref2) <= 1e-10 * ref, "false alarm: reference converged (%.3g)", fabs(ref - ref2) / ref);
     for (cb = 0; cb < 2; ++cb) {
-        int mi, alarms = 0, silent = 0, ok = 0;
-        hrm_status ns_st = HRM_OK;
-        for (mi = 0; mi < 7; ++mi) {
-            hrm_medium m;
-            hrm_result r;
-            hrm_status st;
-            double e;
-            memset(&m, 0, sizeof m);
-            m.user = &sc;
-            m.Li = br_fa_li;
-            if (cb) {
-                m.sigma = br_fa_sig;
-            } else {
-                int c;
-                m.flags = HRM_MEDIUM_HOMOGENEOUS;
-                for (c = 0; c < NCH; ++c) {
-                    m.const_sigma_a[c] = (hrm_real)(sc.st - sc.ss);
-                    m.const_sigma_s[c] = (hrm_real)sc.ss;
-                }
-            }
-            o = hrm_default_options(am[mi]);
-            o.rtol = (hrm_real)rtol;
-            hrm_light_options(&sc.L, 1, NULL, 0, org, dir, 0, (hrm_real)t1, &plan, &o);
-            st = hrm_solve(&m, 0, (hrm_real)t1, &o, &r);
-            e = fabs((double)r.L[0] - ref) / ref;
-            if (am[mi] == HRM_NESTED_SIMPSON) ns_st = st;
-            if (st == HRM_OK) {
-                ok++;
-                silent += !(e <= 3 * rtol);
-            } else if (st > 0) {
-                alarms += e <= rtol;
-            }
-        }
-        CHECK_INT(alarms, 0, "false alarm (%s): adaptive methods warning on an answer within rtol",
+        br_tally k = br_every_method(&sc.fog, br_fa_li, &sc.L, 1, org, dir, t1, rtol, ref, cb);
+        CHECK_INT(k.alarms, 0, "false alarm (%s): adaptive methods warning on an answer within rtol",
                   cb ? "callbacks" : "constants");
-        CHECK_INT(silent, 0, "false alarm (%s): adaptive methods HRM_OK beyond 3 rtol (%d HRM_OK of 7)",
-                  cb ? "callbacks" : "constants", ok);
-        CHECK_INT(ns_st, HRM_OK, "false alarm (%s): nested Simpson's status", cb ? "callbacks" : "constants");
+        CHECK_INT(k.silent, 0, "false alarm (%s): adaptive methods HRM_OK beyond 3 rtol (%d HRM_OK of 7)",
+                  cb ? "callbacks" : "constants", k.ok);
+        CHECK_INT(k.ns_st, HRM_OK, "false alarm (%s): nested Simpson's status", cb ? "callbacks" : "constants");
     }
 }
 
+/* Two point lights near the ray whose shadow rays cross different fog (a
+   scene of a random sweep of hrm_light_options): feet 0.245 and 4.317, 0.0207
+   and 0.173 off the ray, powers 2.05 and 1.82, the ray [0, 6.845] in fog of
+   sigma_t 0.0168 and sigma_s 0.00698; Li the host's, each light's P / r^2
+   through exp(-sigma_t r). The mixture warp gives the stretch between the
+   peaks about 0.4% of u, and the source per unit of u falls 7% across it
+   (the far light's shadow ray crosses more fog), which a rule's first nodes
+   can straddle: the plan has breakpoints at the edges of the band where
+   one light's irradiance goes from 4 to 1/4 of the other's (closed forms
+   about the crossing, within rounding), and every adaptive method's
+   HRM_OK is within 3 rtol (the manual's promise; rtol 1.4e-4, 2e-4 in
+   float), the medium as constants and as sigma callbacks. Without the
+   breakpoint nested Simpson returned HRM_OK 10 rtol off. The reference:
+   composite 8-point Gauss-Legendre split at the feet, 4000 panels a piece,
+   within 1e-12 of 2000 (checked). */
 typedef struct br_tr_sc {
-    double x[2], D[2], P[2], st, ss;
+    br_fog fog;
+    double x[2], D[2], P[2];
 } br_tr_sc;
 
 static double br_tr_li1(const br_tr_sc *s, double t)
@@ -1462,7 +1496,7 @@ static double br_tr_li1(const br_tr_sc *s, double t)
     int i;
     for (i = 0; i < 2; ++i) {
         double r2 = (t - s->x[i]) * (t - s->x[i]) + s->D[i] * s->D[i];
-        v += s->P[i] / r2 * exp(-s->st * sqrt(r2));
+        v += s->P[i] / r2 * exp(-s->fog.st * sqrt(r2));
     }
     return v;
 }
@@ -1470,7 +1504,7 @@ static double br_tr_li1(const br_tr_sc *s, double t)
 static double br_tr_f(const void *ctx, double t)
 {
     const br_tr_sc *s = (const br_tr_sc *)ctx;
-    return s->ss * br_tr_li1(s, t) * exp(-s->st * t);
+    return s->fog.ss * br_tr_li1(s, t) * exp(-s->fog.st * t);
 }
 
 static void br_tr_li(void *u, hrm_real t, hrm_real out[NCH])
@@ -1479,22 +1513,9 @@ static void br_tr_li(void *u, hrm_real t, hrm_real out[NCH])
     for (c = 0; c < NCH; ++c) out[c] = (hrm_real)br_tr_li1((const br_tr_sc *)u, (double)t);
 }
 
-static void br_tr_sig(void *u, hrm_real t, hrm_real sa[NCH], hrm_real ss[NCH])
-{
-    const br_tr_sc *s = (const br_tr_sc *)u;
-    int c;
-    (void)t;
-    for (c = 0; c < NCH; ++c) {
-        sa[c] = (hrm_real)(s->st - s->ss);
-        ss[c] = (hrm_real)s->ss;
-    }
-}
-
 static void br_transition(void)
 {
-    static const br_tr_sc sc = {{0.24541953, 4.3165289}, {0.020705174, 0.17341967}, {2.05, 1.82}, 0.0168, 0.00698};
-    static const hrm_method am[7] = {HRM_NESTED_SIMPSON, HRM_GAUSS_KRONROD, HRM_BOGACKI_SHAMPINE, HRM_DORMAND_PRINCE,
-                                     HRM_FEHLBERG,       HRM_CASH_KARP,     HRM_VERNER};
+    static const br_tr_sc sc = {{0.0168, 0.00698}, {0.24541953, 4.3165289}, {0.020705174, 0.17341967}, {2.05, 1.82}};
     const double t1 = 6.8446667, rtol = real_is_float() ? 2e-4 : 1.4e-4;
     double cut[4] = {0, sc.x[0], sc.x[1], t1}, ref = 0, ref2 = 0, tx, A, B, C, dl, edge[2];
     hrm_light L[2];
@@ -1539,43 +1560,13 @@ static void br_transition(void)
           "transition: breakpoints at the band's edges (%d: %.9g %.9g, want %.9g %.9g)", o.nbreaks,
           o.nbreaks ? (double)o.breaks[0] : 0.0, o.nbreaks > 1 ? (double)o.breaks[1] : 0.0, edge[0], edge[1]);
     for (cb = 0; cb < 2; ++cb) {
-        int mi, ok = 0, silent = 0;
-        double worst = 0;
-        long evals = 0;
-        for (mi = 0; mi < 7; ++mi) {
-            hrm_medium m;
-            hrm_result r;
-            hrm_status st;
-            double e;
-            memset(&m, 0, sizeof m);
-            m.user = (void *)&sc;
-            m.Li = br_tr_li;
-            if (cb) {
-                m.sigma = br_tr_sig;
-            } else {
-                int c;
-                m.flags = HRM_MEDIUM_HOMOGENEOUS;
-                for (c = 0; c < NCH; ++c) {
-                    m.const_sigma_a[c] = (hrm_real)(sc.st - sc.ss);
-                    m.const_sigma_s[c] = (hrm_real)sc.ss;
-                }
-            }
-            o = hrm_default_options(am[mi]);
-            o.rtol = (hrm_real)rtol;
-            hrm_light_options(L, 2, NULL, 0, org, dir, 0, (hrm_real)t1, &plan, &o);
-            st = hrm_solve(&m, 0, (hrm_real)t1, &o, &r);
-            e = fabs((double)r.L[0] - ref) / ref;
-            if (st != HRM_OK) continue;
-            ok++;
-            silent += !(e <= 3 * rtol);
-            if (e > worst) worst = e;
-            if (am[mi] == HRM_NESTED_SIMPSON) evals = r.stats.evals;
-        }
-        CHECK_INT(silent, 0, "transition (%s): adaptive methods HRM_OK beyond 3 rtol (%d HRM_OK of 7, worst %.3g of "
-                  "rtol)", cb ? "callbacks" : "constants", ok, worst / rtol);
-        CHECK(ok >= 4, "transition (%s): most adaptive methods HRM_OK (%d of 7)", cb ? "callbacks" : "constants", ok);
+        br_tally k = br_every_method(&sc.fog, br_tr_li, L, 2, org, dir, t1, rtol, ref, cb);
+        CHECK_INT(k.silent, 0, "transition (%s): adaptive methods HRM_OK beyond 3 rtol (%d HRM_OK of 7, worst %.3g "
+                  "of rtol)", cb ? "callbacks" : "constants", k.ok, k.worst);
+        CHECK(k.ok >= 4, "transition (%s): most adaptive methods HRM_OK (%d of 7)", cb ? "callbacks" : "constants",
+              k.ok);
         NOTE("transition (%s): %d of 7 HRM_OK, worst %.3g of rtol; nested Simpson %ld evaluations",
-             cb ? "callbacks" : "constants", ok, worst / rtol, evals);
+             cb ? "callbacks" : "constants", k.ok, k.worst, k.ns_evals);
     }
 }
 
