@@ -1563,7 +1563,7 @@ static void wp_rte_vs_od(void)
    e^-(sigma_t (t + r)), into the last samples of u, and there Simpson on
    the halves and on the whole can agree to a twentieth of their error
    (four scenes of a random sweep, 33 of its 3000 rays at rtol 2e-4..1e-3
-   off by 3 to 6 rtol with HRM_OK where nested Simpson took that agreement
+   off by 3 to 12 rtol with HRM_OK where nested Simpson took that agreement
    as its estimate; here up to 7.8 rtol, 11 checks failing, float and
    double, the first scene without a warp too). Every
    adaptive method, the medium as constants and as sigma callbacks,
