@@ -3159,14 +3159,18 @@ static HRM_DEVICE double hrm__mix_u(const hrm_ray_plan *p, double t)
     return u;
 }
 
+/* Light i's irradiance on the ray at t, power / r^2: its part of du/dt. */
+static HRM_DEVICE double hrm__mix_irr(const hrm_ray_plan *p, int i, double t)
+{
+    double x = (t - p->delta[i]) / p->D[i];
+    return p->c[i] / (p->D[i] * (1 + x * x));
+}
+
 static HRM_DEVICE double hrm__mix_du(const hrm_ray_plan *p, double t)
 {
     double g = 0;
     int i;
-    for (i = 0; i < p->nmix; ++i) {
-        double x = (t - p->delta[i]) / p->D[i];
-        g += p->c[i] / (p->D[i] * (1 + x * x));
-    }
+    for (i = 0; i < p->nmix; ++i) g += hrm__mix_irr(p, i, t);
     return g;
 }
 
@@ -3309,13 +3313,11 @@ static HRM_DEVICE void hrm__mix_transitions(const hrm_ray_plan *p, hrm_real t0, 
             m = hrm__mix_ratio_at(p, i, j, 1, s);
             for (r = 0; r < m; ++r) {
                 double t = p->delta[i] + s[r], xi = s[r], xj = t - p->delta[j];
-                double ri = p->D[i] * p->D[i] + xi * xi, rj = p->D[j] * p->D[j] + xj * xj, Ii = p->c[i] * p->D[i] / ri;
+                double ri = p->D[i] * p->D[i] + xi * xi, rj = p->D[j] * p->D[j] + xj * xj;
                 double slope = fabs(2 * xj / rj - 2 * xi / ri); /* d/dt ln(I_i / I_j) */
                 int top = HRM__FINITE(t) && t > (double)t0 && t < (double)t1;
-                for (k = 0; k < p->nmix && top; ++k) {
-                    double x = t - p->delta[k];
-                    top = k == i || k == j || p->c[k] * p->D[k] / (p->D[k] * p->D[k] + x * x) <= Ii;
-                }
+                for (k = 0; k < p->nmix && top; ++k)
+                    top = k == i || k == j || hrm__mix_irr(p, k, t) <= hrm__mix_irr(p, i, t);
                 /* the band: ln 16 / slope of t, hrm__mix_du per unit of t;
                    its edges the breakpoints (the roots nearest the
                    crossing), so that the change is a piece of its own,

@@ -5,7 +5,8 @@
    writes its table on stdout and to OUTDIR/sweep.md.
 
    Two families of camera rays, each solved by every adaptive method with
-   its defaults, rtol log-uniform in 1e-5..1e-1 (float: 2e-4..1e-1):
+   its defaults, rtol log-uniform in 1e-5..1e-1 (float: 2e-4..1e-1), the
+   fog given as constants and again as one sigma callback:
      fog     thick homogeneous fog (sigma_t 0.1..2, albedo 1/2) past one
              point light (its foot 0.5..4.5 along the ray, 0.01..1 off it;
              the ray 1..11 beyond the foot) with the light's equiangular
@@ -42,11 +43,51 @@ typedef struct tally {
     double worst; /* the largest error / rtol of an HRM_OK answer */
 } tally;
 
+/* The fog: sigma_t and sigma_s, the first member of each family's user
+   data. */
+typedef struct fogc {
+    double st, ss;
+} fogc;
+
+static void fog_sigma(void *user, hrm_real t, hrm_real sa[HRM_CHANNELS], hrm_real ss[HRM_CHANNELS])
+{
+    const fogc *f = (const fogc *)user;
+    int c;
+    (void)t;
+    for (c = 0; c < HRM_CHANNELS; ++c) {
+        sa[c] = (hrm_real)(f->st - f->ss);
+        ss[c] = (hrm_real)f->ss;
+    }
+}
+
+/* The camera ray's medium: the fog (the user data's first member) as
+   constants or (cb) its sigma callback, Li the family's. */
+static hrm_medium fog_medium(void *user, hrm_spectrum_fn li, int cb)
+{
+    const fogc *f = (const fogc *)user;
+    hrm_medium md;
+    int c;
+    memset(&md, 0, sizeof md);
+    md.Li = li;
+    md.user = user;
+    if (cb) {
+        md.sigma = fog_sigma;
+    } else {
+        md.flags = HRM_MEDIUM_HOMOGENEOUS;
+        for (c = 0; c < HRM_CHANNELS; ++c) {
+            md.const_sigma_a[c] = (hrm_real)(f->st - f->ss);
+            md.const_sigma_s[c] = (hrm_real)f->ss;
+        }
+    }
+    return md;
+}
+
 typedef struct scene {
+    fogc fog;
     int nl, ns;
     hrm_light L[MAXL];
     hrm_sphere S[MAXS];
-    double o[3], d[3], st, ss;
+    double o[3], d[3];
 } scene;
 
 static double uni(unsigned *s)
@@ -78,13 +119,14 @@ static void count(tally *t, hrm_status st, double err, double rtol, long evals)
 /* ---- fog: one point light, its equiangular warp ---- */
 
 typedef struct fog {
-    double delta, D, st;
+    fogc fog; /* albedo 1/2 */
+    double delta, D;
 } fog;
 
 static double fog_f(const fog *f, double t)
 {
     double x = t - f->delta, r2 = x * x + f->D * f->D;
-    return 0.5 * f->st / r2 * exp(-f->st * (sqrt(r2) + t));
+    return f->fog.ss / r2 * exp(-f->fog.st * (sqrt(r2) + t));
 }
 
 static void fog_li(void *user, hrm_real t, hrm_real out[HRM_CHANNELS])
@@ -92,7 +134,7 @@ static void fog_li(void *user, hrm_real t, hrm_real out[HRM_CHANNELS])
     const fog *f = (const fog *)user;
     double x = (double)t - f->delta, r2 = x * x + f->D * f->D;
     int c;
-    for (c = 0; c < HRM_CHANNELS; ++c) out[c] = (hrm_real)(exp(-f->st * sqrt(r2)) / r2);
+    for (c = 0; c < HRM_CHANNELS; ++c) out[c] = (hrm_real)(exp(-f->fog.st * sqrt(r2)) / r2);
 }
 
 static double fog_gl(const fog *f, double a, double b, int n)
@@ -132,7 +174,7 @@ static double fog_ref(const fog *f, double t1)
     return tot;
 }
 
-static void run_fog(int rays, tally t[NMETH])
+static void run_fog(int rays, int cb, tally t[NMETH])
 {
     unsigned seed = 1;
     int i, m;
@@ -142,7 +184,8 @@ static void run_fog(int rays, tally t[NMETH])
         hrm_real org[3] = {0, 0, 0}, dir[3] = {1, 0, 0}, lp[3];
         f.delta = 0.5 + 4 * uni(&seed);
         f.D = pow(10, -2 + 2 * uni(&seed));
-        f.st = pow(10, -1 + 1.3 * uni(&seed));
+        f.fog.st = pow(10, -1 + 1.3 * uni(&seed));
+        f.fog.ss = 0.5 * f.fog.st;
         t1 = f.delta + 1 + 10 * uni(&seed);
         rtol = pick_rtol(&seed);
         ref = fog_ref(&f, t1);
@@ -150,16 +193,10 @@ static void run_fog(int rays, tally t[NMETH])
         lp[1] = 0;
         lp[2] = (hrm_real)f.D;
         for (m = 0; m < NMETH; ++m) {
-            hrm_medium md;
+            hrm_medium md = fog_medium(&f, fog_li, cb);
             hrm_options o = hrm_default_options(methods[m]);
             hrm_result r;
             hrm_status st;
-            int c;
-            memset(&md, 0, sizeof md);
-            md.flags = HRM_MEDIUM_HOMOGENEOUS;
-            md.Li = fog_li;
-            md.user = &f;
-            for (c = 0; c < HRM_CHANNELS; ++c) md.const_sigma_a[c] = md.const_sigma_s[c] = (hrm_real)(0.5 * f.st);
             o.rtol = (hrm_real)rtol;
             hrm_equiangular_warp(org, dir, lp, &o.warp);
             st = hrm_solve(&md, 0, (hrm_real)t1, &o, &r);
@@ -219,7 +256,7 @@ static long double lights_li(const scene *sc, long double t, unsigned *state)
                 s |= 4u << (4 * k + q);
                 vis = 0;
             }
-        if (vis && f > 0) tot += f * (long double)l->power / r2 * expl(-(long double)sc->st * r);
+        if (vis && f > 0) tot += f * (long double)l->power / r2 * expl(-(long double)sc->fog.st * r);
     }
     if (state) *state = s;
     return tot;
@@ -234,7 +271,7 @@ static void lights_hrm_li(void *user, hrm_real t, hrm_real out[HRM_CHANNELS])
 
 static long double lights_f(const scene *sc, long double t)
 {
-    return (long double)sc->ss * lights_li(sc, t, NULL) * expl(-(long double)sc->st * t);
+    return (long double)sc->fog.ss * lights_li(sc, t, NULL) * expl(-(long double)sc->fog.st * t);
 }
 
 static long double simpson(const scene *sc, long double a, long double b, long double fa, long double fm,
@@ -302,8 +339,8 @@ static int lights_scene(unsigned *seed, scene *sc, double *t1)
     len = sqrt(sc->d[0] * sc->d[0] + sc->d[1] * sc->d[1] + sc->d[2] * sc->d[2]);
     for (k = 0; k < 3; ++k) sc->d[k] /= len;
     *t1 = 1 + 9 * uni(seed);
-    sc->st = pow(10, -2 + 2 * uni(seed));
-    sc->ss = sc->st * (0.3 + 0.7 * uni(seed));
+    sc->fog.st = pow(10, -2 + 2 * uni(seed));
+    sc->fog.ss = sc->fog.st * (0.3 + 0.7 * uni(seed));
     for (k = 0; k < sc->nl; ++k) {
         hrm_light *l = &sc->L[k];
         double tf = *t1 * uni(seed), off = pow(10, -2 + 2 * uni(seed)), a[3];
@@ -343,7 +380,7 @@ static int lights_scene(unsigned *seed, scene *sc, double *t1)
     return *t1 >= 0.05;
 }
 
-static void run_lights(int rays, tally t[NMETH], long double *pts)
+static void run_lights(int rays, int cb, tally t[NMETH], long double *pts)
 {
     unsigned seed = 3;
     int i, m;
@@ -361,20 +398,11 @@ static void run_lights(int rays, tally t[NMETH], long double *pts)
             dir[k] = (hrm_real)sc.d[k];
         }
         for (m = 0; m < NMETH; ++m) {
-            hrm_medium md;
+            hrm_medium md = fog_medium(&sc, lights_hrm_li, cb);
             hrm_options o = hrm_default_options(methods[m]);
             hrm_ray_plan plan;
             hrm_result r;
             hrm_status st;
-            int c;
-            memset(&md, 0, sizeof md);
-            md.flags = HRM_MEDIUM_HOMOGENEOUS;
-            md.Li = lights_hrm_li;
-            md.user = &sc;
-            for (c = 0; c < HRM_CHANNELS; ++c) {
-                md.const_sigma_a[c] = (hrm_real)(sc.st - sc.ss);
-                md.const_sigma_s[c] = (hrm_real)sc.ss;
-            }
             o.rtol = (hrm_real)rtol;
             if (hrm_light_options(sc.L, sc.nl, sc.S, sc.ns, org, dir, 0, (hrm_real)t1, &plan, &o) != HRM_OK) continue;
             st = hrm_solve(&md, 0, (hrm_real)t1, &o, &r);
@@ -397,17 +425,20 @@ static void report(FILE *f, const char *name, int rays, const tally t[NMETH])
 
 int main(int argc, char **argv)
 {
+    static const char *const form[2] = {"constants", "sigma callback"};
     const char *dir = argc > 1 ? argv[1] : "bench/out";
-    int rays = argc > 2 ? atoi(argv[2]) : 4000, k;
-    tally fog_t[NMETH], light_t[NMETH];
+    int rays = argc > 2 ? atoi(argv[2]) : 4000, k, cb;
+    tally fog_t[2][NMETH], light_t[2][NMETH];
     long double *pts = (long double *)malloc(sizeof(long double) * (SCAN + 66));
-    char path[1024];
+    char path[1024], name[160];
     FILE *f;
     if (!pts || rays < 1) return 2;
     memset(fog_t, 0, sizeof fog_t);
     memset(light_t, 0, sizeof light_t);
-    run_fog(rays, fog_t);
-    run_lights(rays, light_t, pts);
+    for (cb = 0; cb < 2; ++cb) {
+        run_fog(rays, cb, fog_t[cb]);
+        run_lights(rays, cb, light_t[cb], pts);
+    }
     free(pts);
     snprintf(path, sizeof path, "%s/sweep.md", dir);
     f = fopen(path, "w");
@@ -416,11 +447,18 @@ int main(int argc, char **argv)
         if (!out) continue;
         fprintf(out, "## Silent answers in random scenes (hrm_real %s)\n\n`build/bench_sweep` (part of `make bench`); "
                      "bench/sweep.c says what each family is. Each ray at one rtol, log-uniform in %s..1e-1, every "
-                     "adaptive method with its defaults.\n",
+                     "adaptive method with its defaults; the fog as constants, then as a sigma callback.\n",
                 sizeof(hrm_real) == sizeof(float) ? "float" : "double",
                 sizeof(hrm_real) == sizeof(float) ? "2e-4" : "1e-5");
-        report(out, "fog: thick fog past a point light, its equiangular warp", rays, fog_t);
-        report(out, "lights: 1-3 point and spot lights, 0-2 spheres, hrm_light_options", rays, light_t);
+        for (cb = 0; cb < 2; ++cb) {
+            snprintf(name, sizeof name, "fog: thick fog past a point light, its equiangular warp; %s", form[cb]);
+            report(out, name, rays, fog_t[cb]);
+        }
+        for (cb = 0; cb < 2; ++cb) {
+            snprintf(name, sizeof name, "lights: 1-3 point and spot lights, 0-2 spheres, hrm_light_options; %s",
+                     form[cb]);
+            report(out, name, rays, light_t[cb]);
+        }
     }
     if (!f) {
         fprintf(stderr, "bench_sweep: cannot write %s\n", path);
