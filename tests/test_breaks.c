@@ -1382,11 +1382,14 @@ static br_tally br_every_method(const br_fog *fog, hrm_spectrum_fn li, const hrm
    reference: 8-point Gauss-Legendre, 4000 panels a piece between the
    plan's breakpoints (which the spot test above checks against closed
    forms), within 1e-10 of 2000 (checked). */
-typedef struct br_fa_sc {
+/* A ray o + t d through fog past the lights L[0..nl) (this test's and the
+   next's scene). */
+typedef struct br_ls_sc {
     br_fog fog;
     double o[3], d[3];
-    hrm_light L;
-} br_fa_sc;
+    hrm_light L[2];
+    int nl;
+} br_ls_sc;
 
 /* The host's Li from one point or spot light at o + t d through fog of
    sigma_t st: P / r^2 e^(-st r), a spot's cone with a smoothstep falloff. */
@@ -1410,18 +1413,56 @@ static double br_light_at(const hrm_light *L, const double o[3], const double d[
     return f * (double)L->power / r2 * exp(-st * r);
 }
 
-static double br_fa_li1(const br_fa_sc *s, double t) { return br_light_at(&s->L, s->o, s->d, s->fog.st, t); }
-
-static double br_fa_f(const void *ctx, double t)
+static double br_ls_li1(const br_ls_sc *s, double t)
 {
-    const br_fa_sc *s = (const br_fa_sc *)ctx;
-    return s->fog.ss * br_fa_li1(s, t) * exp(-s->fog.st * t);
+    double v = 0;
+    int k;
+    for (k = 0; k < s->nl; ++k) v += br_light_at(&s->L[k], s->o, s->d, s->fog.st, t);
+    return v;
 }
 
-static void br_fa_li(void *u, hrm_real t, hrm_real out[NCH])
+static double br_ls_f(const void *ctx, double t)
+{
+    const br_ls_sc *s = (const br_ls_sc *)ctx;
+    return s->fog.ss * br_ls_li1(s, t) * exp(-s->fog.st * t);
+}
+
+static void br_ls_li(void *u, hrm_real t, hrm_real out[NCH])
 {
     int c;
-    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)br_fa_li1((const br_fa_sc *)u, (double)t);
+    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)br_ls_li1((const br_ls_sc *)u, (double)t);
+}
+
+/* The scene's ray, fog and light count (the lights left zero), and the
+   ray in hrm_real. */
+static void br_ls_init(br_ls_sc *sc, const double o3[3], const double d3[3], double st, double ss, int nl,
+                       hrm_real org[3], hrm_real dir[3])
+{
+    int i;
+    memset(sc, 0, sizeof *sc);
+    sc->nl = nl;
+    sc->fog.st = st;
+    sc->fog.ss = ss;
+    for (i = 0; i < 3; ++i) {
+        sc->o[i] = o3[i];
+        sc->d[i] = d3[i];
+        org[i] = (hrm_real)o3[i];
+        dir[i] = (hrm_real)d3[i];
+    }
+}
+
+/* The reference over [0, t1]: 8-point Gauss-Legendre, `per` panels a
+   piece between the breakpoints in o. */
+static double br_ls_ref(const br_ls_sc *s, const hrm_options *o, double t1, int per)
+{
+    double a = 0, tot = 0;
+    int i;
+    for (i = 0; i <= o->nbreaks; ++i) {
+        double b = i < o->nbreaks ? (double)o->breaks[i] : t1;
+        tot += gl_integrate(br_ls_f, s, a, b, per, 8, 0, 0);
+        a = b;
+    }
+    return tot;
 }
 
 static void br_false_alarm(void)
@@ -1429,45 +1470,31 @@ static void br_false_alarm(void)
     const double t1 = 5.0026133060455322, rtol = 2.9001723080613424e-4;
     static const double o3[3] = {-0.07892763614654541, -0.66526186466217041, -0.80895602703094482};
     static const double d3[3] = {-0.44168334084082861, -0.30747427296501073, -0.84283770554497772};
-    br_fa_sc sc;
+    br_ls_sc sc;
     hrm_ray_plan plan;
     hrm_options o = hrm_default_options(HRM_NESTED_SIMPSON);
     hrm_real org[3], dir[3];
-    double cut[HRM_MAX_BREAKS + 2], ref = 0, ref2 = 0;
-    int i, cb, n;
-    memset(&sc, 0, sizeof sc);
-    for (i = 0; i < 3; ++i) {
-        sc.o[i] = o3[i];
-        sc.d[i] = d3[i];
-        org[i] = (hrm_real)o3[i];
-        dir[i] = (hrm_real)d3[i];
-    }
-    sc.fog.st = 0.086927511583841308;
-    sc.fog.ss = 0.06295536693023869;
-    sc.L.kind = HRM_LIGHT_SPOT;
-    sc.L.position[0] = (hrm_real)-1.9571668329204404;
-    sc.L.position[1] = (hrm_real)-1.9727310603300254;
-    sc.L.position[2] = (hrm_real)-4.3852657266325519;
-    sc.L.direction[0] = (hrm_real)0.91345866826469346;
-    sc.L.direction[1] = (hrm_real)0.36821063088838846;
-    sc.L.direction[2] = (hrm_real)-0.17324604662983664;
-    sc.L.cone = (hrm_real)1.1774662017822266;
-    sc.L.falloff = (hrm_real)0.84545476519410845;
-    sc.L.power = (hrm_real)2.7337678074836731;
-    CHECK_INT(hrm_light_options(&sc.L, 1, NULL, 0, org, dir, 0, (hrm_real)t1, &plan, &o), HRM_OK,
+    double ref, ref2;
+    int cb;
+    br_ls_init(&sc, o3, d3, 0.086927511583841308, 0.06295536693023869, 1, org, dir);
+    sc.L[0].kind = HRM_LIGHT_SPOT;
+    sc.L[0].position[0] = (hrm_real)-1.9571668329204404;
+    sc.L[0].position[1] = (hrm_real)-1.9727310603300254;
+    sc.L[0].position[2] = (hrm_real)-4.3852657266325519;
+    sc.L[0].direction[0] = (hrm_real)0.91345866826469346;
+    sc.L[0].direction[1] = (hrm_real)0.36821063088838846;
+    sc.L[0].direction[2] = (hrm_real)-0.17324604662983664;
+    sc.L[0].cone = (hrm_real)1.1774662017822266;
+    sc.L[0].falloff = (hrm_real)0.84545476519410845;
+    sc.L[0].power = (hrm_real)2.7337678074836731;
+    CHECK_INT(hrm_light_options(sc.L, 1, NULL, 0, org, dir, 0, (hrm_real)t1, &plan, &o), HRM_OK,
               "false alarm: status");
     CHECK(o.nbreaks == 4, "false alarm: four breakpoints (%d)", o.nbreaks);
-    n = 0;
-    cut[n++] = 0;
-    for (i = 0; i < o.nbreaks; ++i) cut[n++] = (double)o.breaks[i];
-    cut[n++] = t1;
-    for (i = 0; i + 1 < n; ++i) {
-        ref += gl_integrate(br_fa_f, &sc, cut[i], cut[i + 1], 4000, 8, 0, 0);
-        ref2 += gl_integrate(br_fa_f, &sc, cut[i], cut[i + 1], 2000, 8, 0, 0);
-    }
+    ref = br_ls_ref(&sc, &o, t1, 4000);
+    ref2 = br_ls_ref(&sc, &o, t1, 2000);
     CHECK(fabs(ref - ref2) <= 1e-10 * ref, "false alarm: reference converged (%.3g)", fabs(ref - ref2) / ref);
     for (cb = 0; cb < 2; ++cb) {
-        br_tally k = br_every_method(&sc.fog, br_fa_li, &sc.L, 1, org, dir, t1, rtol, ref, cb);
+        br_tally k = br_every_method(&sc.fog, br_ls_li, sc.L, 1, org, dir, t1, rtol, ref, cb);
         CHECK_INT(k.alarms, 0, "false alarm (%s): adaptive methods warning on an answer within rtol",
                   cb ? "callbacks" : "constants");
         CHECK_INT(k.silent, 0, "false alarm (%s): adaptive methods HRM_OK beyond 3 rtol (%d HRM_OK of 7)",
@@ -1488,31 +1515,8 @@ static void br_false_alarm(void)
    Dormand-Prince returned HRM_OK 12.7 rtol off. The reference: 8-point
    Gauss-Legendre, 4000 panels a piece between the plan's breakpoints,
    within 1e-10 of 2000 (checked). */
-typedef struct br_df_sc {
-    br_fog fog;
-    double o[3], d[3];
-    hrm_light L[2];
-} br_df_sc;
-
-static double br_df_li1(const br_df_sc *s, double t)
-{
-    return br_light_at(&s->L[0], s->o, s->d, s->fog.st, t) + br_light_at(&s->L[1], s->o, s->d, s->fog.st, t);
-}
-
-static double br_df_f(const void *ctx, double t)
-{
-    const br_df_sc *s = (const br_df_sc *)ctx;
-    return s->fog.ss * br_df_li1(s, t) * exp(-s->fog.st * t);
-}
-
-static void br_df_li(void *u, hrm_real t, hrm_real out[NCH])
-{
-    int c;
-    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)br_df_li1((const br_df_sc *)u, (double)t);
-}
-
 /* cos of the angle at the spot between its axis and o + t d */
-static double br_df_cos(const br_df_sc *s, double t)
+static double br_df_cos(const br_ls_sc *s, double t)
 {
     double v[3], r = 0, ca = 0;
     int j;
@@ -1532,23 +1536,17 @@ static void br_dark_foot(void)
     static const double pos[2][3] = {{4.4979995394178607, -0.97522870920245575, 4.0034856089740405},
                                      {2.4849759404132783, -1.2194687787397445, 2.5011015266031684}};
     static const double axis[3] = {-0.36941313421926253, 0.55803428092759966, -0.74305563558586762};
-    br_df_sc sc;
+    br_ls_sc sc;
     hrm_ray_plan plan;
     hrm_options o = hrm_default_options(HRM_NESTED_SIMPSON);
     hrm_real org[3], dir[3];
-    double cut[HRM_MAX_BREAKS + 2], ref = 0, ref2 = 0, foot = 0, D = 0, lo = 0, hi, edge, want;
-    int i, j, cb, n, k = -1;
-    memset(&sc, 0, sizeof sc);
+    double ref, ref2, foot = 0, D = 0, lo = 0, hi, edge, want;
+    int i, j, cb, k = -1;
+    br_ls_init(&sc, o3, d3, 0.1589062140126998, 0.13951874144409174, 2, org, dir);
     for (i = 0; i < 3; ++i) {
-        sc.o[i] = o3[i];
-        sc.d[i] = d3[i];
-        org[i] = (hrm_real)o3[i];
-        dir[i] = (hrm_real)d3[i];
         for (j = 0; j < 2; ++j) sc.L[j].position[i] = (hrm_real)pos[j][i];
         sc.L[0].direction[i] = (hrm_real)axis[i];
     }
-    sc.fog.st = 0.1589062140126998;
-    sc.fog.ss = 0.13951874144409174;
     sc.L[0].kind = HRM_LIGHT_SPOT;
     sc.L[0].cone = (hrm_real)0.98682987689971924;
     sc.L[0].falloff = (hrm_real)0.29637654143276393;
@@ -1581,17 +1579,11 @@ static void br_dark_foot(void)
               fabs(plan.c[k] - (double)sc.L[0].power / want) <= 1e4 * real_eps() * plan.c[k],
           "dark foot: the spot's density at the cone's edge %.9g, %.9g from the light (%d lights: %.9g, %.9g)", edge,
           want, plan.nmix, k >= 0 ? plan.delta[k] : 0.0, k >= 0 ? plan.D[k] : 0.0);
-    n = 0;
-    cut[n++] = 0;
-    for (i = 0; i < o.nbreaks; ++i) cut[n++] = (double)o.breaks[i];
-    cut[n++] = t1;
-    for (i = 0; i + 1 < n; ++i) {
-        ref += gl_integrate(br_df_f, &sc, cut[i], cut[i + 1], 4000, 8, 0, 0);
-        ref2 += gl_integrate(br_df_f, &sc, cut[i], cut[i + 1], 2000, 8, 0, 0);
-    }
+    ref = br_ls_ref(&sc, &o, t1, 4000);
+    ref2 = br_ls_ref(&sc, &o, t1, 2000);
     CHECK(fabs(ref - ref2) <= 1e-10 * ref, "dark foot: reference converged (%.3g)", fabs(ref - ref2) / ref);
     for (cb = 0; cb < 2; ++cb) {
-        br_tally t = br_every_method(&sc.fog, br_df_li, sc.L, 2, org, dir, t1, rtol, ref, cb);
+        br_tally t = br_every_method(&sc.fog, br_ls_li, sc.L, 2, org, dir, t1, rtol, ref, cb);
         CHECK_INT(t.silent, 0, "dark foot (%s): adaptive methods HRM_OK beyond 3 rtol (%d HRM_OK of 7, worst %.3g "
                   "of rtol)", cb ? "callbacks" : "constants", t.ok, t.worst);
         CHECK(t.ok >= 4, "dark foot (%s): most adaptive methods HRM_OK (%d of 7)", cb ? "callbacks" : "constants",
