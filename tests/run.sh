@@ -116,6 +116,32 @@ rm -f build/example_gpu
 ( make --no-print-directory -s gpu-build > "$B/gpu.log" 2>&1; echo $? > "$B/gpu.rc"; date +%s > "$B/gpu.end" ) &
 gpu_pid=$!
 
+# Stack use (tests/stack.c): each method's largest stack over its forms, warps,
+# fits, Gauss-Kronrod modes and rules, breakpoints and media, on a painted
+# thread stack, within STACK_LIMIT (twice it with a shadow ray solved in Li).
+# Built and run one after the other in the background too (they measure
+# stack, not time), added up at the end.
+# stackprog NAME COMPILER FLAGS...: build tests/stack.c with them and run
+# it, its output in $B/NAME.out and its exit status in $B/NAME.rc ("build"
+# where it did not build)
+stackprog() {
+    sname=$1
+    shift
+    if "$@" -I. tests/stack.c -o "$B/$sname" -lm -pthread 2> "$B/$sname.log"; then
+        "$B/$sname" > "$B/$sname.out" 2>&1
+        echo $? > "$B/$sname.rc"
+    else
+        echo build > "$B/$sname.rc"
+    fi
+}
+STACKPROGS="stack-gcc-O2 stack-gcc-O2-float stack-clang-O2-ch8"
+(
+    stackprog stack-gcc-O2          gcc   -std=c99 -O2 $WARN
+    stackprog stack-gcc-O2-float    gcc   -std=c99 -O2 $WARN -DHRM_REAL=float
+    stackprog stack-clang-O2-ch8    clang -std=c99 -O2 $WARN -DHRM_CHANNELS=8
+) &
+stack_pid=$!
+
 # Implementation compiled as C, used from C++: the extern "C" linkage pair.
 configs=$((configs + 1))
 if gcc -std=c99 -O2 $WARN -I. -c tests/linkage_impl.c -o "$B/linkage_impl.o" 2> "$B/linkage.log" &&
@@ -150,24 +176,6 @@ prog() {
 }
 prog threads-gcc-O2       gcc   -std=c99 -O2 $WARN -pthread
 prog threads-clang-tsan   clang -std=c99 -O1 -g $WARN -fsanitize=thread -pthread
-
-# Stack use (tests/stack.c): each method's largest stack over its forms, warps,
-# fits, Gauss-Kronrod modes and rules, breakpoints and media, on a painted
-# thread stack, within STACK_LIMIT (twice it with a shadow ray solved in Li).
-# stackprog NAME COMPILER FLAGS...: build tests/stack.c with them and run it
-stackprog() {
-    sname=$1
-    shift
-    configs=$((configs + 1))
-    if "$@" -I. tests/stack.c -o "$B/$sname" -lm -pthread 2> "$B/$sname.log"; then
-        tally "$sname" "$B/$sname"
-    else
-        echo "$sname: build failed"; cat "$B/$sname.log"; fail=$((fail + 1))
-    fi
-}
-stackprog stack-gcc-O2          gcc   -std=c99 -O2 $WARN
-stackprog stack-gcc-O2-float    gcc   -std=c99 -O2 $WARN -DHRM_REAL=float
-stackprog stack-clang-O2-ch8    clang -std=c99 -O2 $WARN -DHRM_CHANNELS=8
 
 # No heap use (tests/alloc.c): every method x form x warp x fit x medium,
 # the other options, nested shadow rays, every error path and every public
@@ -287,6 +295,16 @@ if gcc -std=c99 -O2 $WARN -I. examples/ray.c -o "$B/example_ray" -lm 2> "$B/exam
 else
     echo "examples: build FAILED"; cat "$B/examples.log"; fail=$((fail + 1))
 fi
+
+wait "$stack_pid"
+for sname in $STACKPROGS; do
+    configs=$((configs + 1))
+    if [ "$(cat "$B/$sname.rc")" = build ]; then
+        echo "$sname: build failed"; cat "$B/$sname.log"; fail=$((fail + 1))
+    else
+        tally_out "$sname" "$(cat "$B/$sname.rc")" "$B/$sname.out"
+    fi
+done
 
 wait "$gpu_pid"
 if [ "$(cat "$B/gpu.rc")" -eq 0 ]; then
