@@ -4618,16 +4618,18 @@ static HRM_DEVICE HRM__CALL void hrm__rk_exp_miss(const hrm__nodes_info *ni, con
     }
 }
 
-/* Two neighbouring nodes of a step between which the medium's Tr falls
-   by more than e^-3 and the integrand by more than 20 times: the
+/* Two neighbouring nodes of a step more than one optical depth apart,
+   across which the integrand falls by more than 20 times: the
    polynomial through the nodes follows the exponential no better than a
    chord there (65% over its integral at a factor 20), and the embedded
    estimate, another such rule, does not measure it. Under the
    equiangular warp, thick fog past the light puts its whole decay
    e^-(sigma_t (t + r)) between a step's last two nodes (Verner: nodes at
    t 3.4 and 11.6, tau 8.6 apart, estimate 0.36 rtol, error 5.1 rtol,
-   HRM_OK). (Under the distance warp the integrand is flat in u however
-   far apart in tau its nodes are: no miss.) Half of what the gap can
+   HRM_OK; 3 optical depths as the condition left a float ray 6.3 rtol
+   off, its shadow ray doubling the decay). (Under the distance warp the
+   integrand is flat in u however far apart in tau its nodes are: no
+   miss.) Half of what the gap can
    hold, its width times the larger of its ends' values over 2, is the
    step's miss (em, where larger): the step is refined until such a gap
    holds no light that matters. */
