@@ -3358,13 +3358,15 @@ static HRM_DEVICE int hrm__in_cone(const double w[3], const double d[3], double 
 /* A spot whose cone leaves dark the point of the ray nearest it (its foot,
    or the ray's end nearest the foot): its equiangular density (eq, in t)
    moved to the lit point nearest that one, which the cone's edges
-   edge[0..nedge) and the ray's ends bound, D its distance from the light.
+   edge[0..nedge) and the ray's ends bound (lit0, lit1: whether the ends
+   are inside the cone, of cosine ca), D its distance from the light.
    Of the light's irradiance P / (D^2 + (t - delta)^2) only the lit part is
    seen, largest there and falling off at least as fast as the moved
    density (a mixture that kept the dark peak spent its samples where Li is
    0: Dormand-Prince 12.7 rtol off with HRM_OK in bench/sweep.c). */
 static HRM_DEVICE void hrm__spot_peak(const double w[3], const double d[3], double len, const double a[3], double ca,
-                                      hrm_real t0, hrm_real t1, const hrm_real edge[2], int nedge, hrm_warp *eq)
+                                      hrm_real t0, hrm_real t1, int lit0, int lit1, const hrm_real edge[2], int nedge,
+                                      hrm_warp *eq)
 {
     double p = (double)eq->delta, best = 0, gap = HUGE_VAL, x[4];
     int j, nx = 0;
@@ -3372,8 +3374,8 @@ static HRM_DEVICE void hrm__spot_peak(const double w[3], const double d[3], doub
     if (p > (double)t1) p = (double)t1;
     if (hrm__in_cone(w, d, p * len, a, ca)) return;
     for (j = 0; j < nedge; ++j) x[nx++] = (double)edge[j];
-    if (hrm__in_cone(w, d, (double)t0 * len, a, ca)) x[nx++] = (double)t0;
-    if ((double)t1 < HUGE_VAL && hrm__in_cone(w, d, (double)t1 * len, a, ca)) x[nx++] = (double)t1;
+    if (lit0) x[nx++] = (double)t0;
+    if (lit1 && (double)t1 < HUGE_VAL) x[nx++] = (double)t1;
     for (j = 0; j < nx; ++j)
         if (fabs(x[j] - p) < gap) {
             gap = fabs(x[j] - p);
@@ -3449,8 +3451,8 @@ HRM__DEF HRM_DEVICE hrm_status hrm_light_options(const hrm_light *lights, int nl
         const hrm_light *l = &lights[i];
         hrm_warp eq;
         hrm_real hit[2], edge[2];
-        double w[3], a[3], alen, mass;
-        int reach = 1, m, nedge = 0;
+        double w[3], a[3], alen, mass, ca = -1;
+        int reach = 1, m, nedge = 0, lit0 = 1, lit1 = 1;
         if (l->kind != HRM_LIGHT_POINT) hrm__unit3(l->direction, a, &alen);
         if (l->kind == HRM_LIGHT_DIRECTIONAL) {
             for (k = 0; k < nspheres; ++k) {
@@ -3467,12 +3469,15 @@ HRM__DEF HRM_DEVICE hrm_status hrm_light_options(const hrm_light *lights, int nl
                a half-space, the back one's of a wider one (none for pi);
                the ray reaches the light where an end is inside or it
                crosses an edge */
-            double ca = cos((double)l->cone), cf = cos((double)l->falloff), ab[3], af[3];
+            double cf = cos((double)l->falloff), ab[3], af[3];
+            ca = cos((double)l->cone);
             for (j = 0; j < 3; ++j) {
                 ab[j] = ca < 0 ? -a[j] : a[j];
                 af[j] = cf < 0 ? -a[j] : a[j];
             }
-            reach = hrm__in_cone(w, d, (double)t0 * len, a, ca) || hrm__in_cone(w, d, (double)t1 * len, a, ca);
+            lit0 = hrm__in_cone(w, d, (double)t0 * len, a, ca);
+            lit1 = hrm__in_cone(w, d, (double)t1 * len, a, ca);
+            reach = lit0 || lit1;
             if (l->cone < (hrm_real)pi) {
                 nedge = hrm__cone_hits(w, d, len, ab, ca * ca, 0, t0, t1, edge);
                 for (j = 0; j < nedge; ++j) hrm__plan_add(cand, &n, edge[j], t0, t1);
@@ -3495,7 +3500,7 @@ HRM__DEF HRM_DEVICE hrm_status hrm_light_options(const hrm_light *lights, int nl
             goto fail;
         }
         if (eq.D == 0) continue; /* on the ray's line, outside it */
-        if (l->kind == HRM_LIGHT_SPOT) hrm__spot_peak(w, d, len, a, cos((double)l->cone), t0, t1, edge, nedge, &eq);
+        if (l->kind == HRM_LIGHT_SPOT) hrm__spot_peak(w, d, len, a, ca, t0, t1, lit0, lit1, edge, nedge, &eq);
         mass = hrm__mix_mass((double)l->power / (double)eq.D, (double)eq.delta, (double)eq.D, t0, t1);
         k = plan->nmix;
         if (plan->nmix == HRM_MAX_LIGHTS) {
@@ -4632,16 +4637,17 @@ static HRM_DEVICE HRM__CALL void hrm__rk_exp_miss(const hrm__nodes_info *ni, con
    miss.) Half of what the gap can
    hold, its width times the larger of its ends' values over 2, is the
    step's miss (em, where larger): the step is refined until such a gap
-   holds no light that matters. */
-static HRM_DEVICE void hrm__rk_tau_gap(const hrm__nodes_info *ni, const hrm__pt *const *qs, hrm_real h,
-                                       const hrm_real (*f)[HRM__CH], hrm_real em[HRM__CH])
+   holds no light that matters. tau[j], f[j]: tau and L' at the step's
+   distinct nodes in ascending order (ni). */
+static HRM_DEVICE void hrm__rk_tau_gap(const hrm__nodes_info *ni, const hrm_real *const *tau, const hrm_real *const *f,
+                                       hrm_real h, hrm_real em[HRM__CH])
 {
     int i, j;
     for (i = 0; i < HRM__CH; ++i)
         for (j = 0; j + 1 < ni->m; ++j) {
             hrm_real hi = f[j][i] > f[j + 1][i] ? f[j][i] : f[j + 1][i], g;
             hrm_real lo = f[j][i] > f[j + 1][i] ? f[j + 1][i] : f[j][i];
-            if (!(hi > 0 && lo * 20 < hi && qs[j + 1]->tau[i] - qs[j]->tau[i] > 1)) continue;
+            if (!(hi > 0 && lo * 20 < hi && tau[j + 1][i] - tau[j][i] > 1)) continue;
             g = (ni->c[j + 1] - ni->c[j]) * HRM_FABS(h) * hi / 2;
             if (g > em[i]) em[i] = g;
         }
@@ -4679,7 +4685,14 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE int hrm__rk_quad(hrm__ctx *c, const hr
     if (err && c->mcheck && endj >= 0)
         hrm__medium_miss(c, qs, ni->bw, ni->m, h, start->tau, pn[endj].tau, start->off, pn[endj].off, em);
     if (err && !c->expo && endj >= 0 && ni->c[0] == 0) hrm__rk_exp_miss(ni, qs, endj, h, (const hrm_real(*)[HRM__CH])f, em);
-    if (err && !c->expo) hrm__rk_tau_gap(ni, qs, h, (const hrm_real(*)[HRM__CH])f, em);
+    if (err && !c->expo) {
+        const hrm_real *tq[HRM__MAX_STAGES], *fq[HRM__MAX_STAGES];
+        for (j = 0; j < ni->m; ++j) {
+            tq[j] = qs[j]->tau;
+            fq[j] = f[j];
+        }
+        hrm__rk_tau_gap(ni, tq, fq, h, em);
+    }
     if (c->expo) {
         /* the nodes' polynomial against the exact local exponential; the
            embedded estimates are those of the fitted values g (what is
@@ -4746,7 +4759,7 @@ static HRM_DEVICE HRM__CALL int hrm__rk_stages_in(hrm__ctx *c, const hrm__tablea
                         const hrm__nodes_info *ni, hrm_real *both, hrm__pt *pts, hrm_real (*k)[HRM__NY])
 {
     const hrm__pt *sp[HRM__MAX_STAGES];
-    hrm_real Y[HRM__NY];
+    hrm_real Y[HRM__NY], ts[HRM__MAX_STAGES][HRM__CH]; /* coupled tau at each stage */
     hrm_real h = p_end - p;
     int i, j, n, end_stage = -1;
 
@@ -4775,6 +4788,7 @@ static HRM_DEVICE HRM__CALL int hrm__rk_stages_in(hrm__ctx *c, const hrm__tablea
                    the march, whatever signs the tableau's a hold */
                 Y[n] += c->sbar[n] * (sp[i]->off - start->off);
                 if (Y[n] < y[n]) Y[n] = y[n];
+                ts[i][n] = Y[n];
             }
         }
         hrm__deriv(c, sp[i], Y, k[i]);
@@ -4789,6 +4803,19 @@ static HRM_DEVICE HRM__CALL int hrm__rk_stages_in(hrm__ctx *c, const hrm__tablea
         if (err) ynew[n] += h * acc;
         else hrm__sum(&ynew[n], &c->ksum[n], h * acc); /* fixed steps */
         if (err) err[n] = h * eacc;
+    }
+    if (err && c->coupled && !c->rte) {
+        /* coupled tau: its stage values at the nodes (hrm__rk_tau_gap) */
+        const hrm_real *tq[HRM__MAX_STAGES], *fq[HRM__MAX_STAGES];
+        hrm_real em[HRM__CH];
+        hrm__fill(em, HRM__CH, 0);
+        for (i = 0; i < ni->m; ++i) {
+            tq[i] = ts[ni->stage[i]];
+            fq[i] = k[ni->stage[i]] + HRM__CH;
+        }
+        hrm__rk_tau_gap(ni, tq, fq, h, em);
+        for (n = 0; n < HRM__CH; ++n)
+            if (em[n] > HRM_FABS(err[HRM__CH + n])) err[HRM__CH + n] = err[HRM__CH + n] < 0 ? -em[n] : em[n];
     }
     if (err && both) {
         /* A second opinion on the step, which an embedded pair cannot
@@ -5358,7 +5385,7 @@ static HRM_DEVICE HRM__CALL void hrm__ns_rule(const hrm__ctx *c, const hrm__pt *
    estimate). 0: no prediction. */
 static HRM_DEVICE hrm_real hrm__fourth_pred(const hrm_real (*f)[HRM__CH], int ch, hrm_real w, int coherent)
 {
-    hrm_real d[5], d2 = 0, d3 = 0, t0, t1;
+    hrm_real d[5], d2 = 0, d3, t0, t1;
     int k;
     for (k = 0; k < 5; ++k) d[k] = f[k][ch];
     for (k = 0; k < 4; ++k) d[k] = d[k + 1] - d[k];
@@ -5366,10 +5393,10 @@ static HRM_DEVICE hrm_real hrm__fourth_pred(const hrm_real (*f)[HRM__CH], int ch
         d[k] = d[k + 1] - d[k];
         d2 = HRM_FABS(d[k]) > d2 ? HRM_FABS(d[k]) : d2;
     }
-    t0 = d[1] - d[0];
+    t0 = d[1] - d[0]; /* the third differences */
     t1 = d[2] - d[1];
     if (coherent && !(t0 * t1 > 0 && HRM_FABS(t0 - t1) <= HRM__R(0.25) * HRM_FABS(t0 + t1))) return 0;
-    for (k = 0; k < 2; ++k) d3 = HRM_FABS(d[k + 1] - d[k]) > d3 ? HRM_FABS(d[k + 1] - d[k]) : d3;
+    d3 = HRM_FABS(t0) > HRM_FABS(t1) ? HRM_FABS(t0) : HRM_FABS(t1);
     return d2 > 0 ? HRM_FABS(w) / 12 * (d3 / d2) * d3 : 0;
 }
 

@@ -569,3 +569,34 @@ int same_result(const hrm_result *a, const hrm_result *b)
 {
     return same_solve(a, b) && a->stats.medium_evals == b->stats.medium_evals;
 }
+
+void fog_sigma(void *user, hrm_real t, hrm_real sa[HRM_CHANNELS], hrm_real ss[HRM_CHANNELS])
+{
+    const test_fog *f = (const test_fog *)user;
+    int c;
+    (void)t;
+    for (c = 0; c < HRM_CHANNELS; ++c) {
+        sa[c] = (hrm_real)(f->st - f->ss);
+        ss[c] = (hrm_real)f->ss;
+    }
+}
+
+hrm_medium fog_medium(void *user, hrm_spectrum_fn li, int cb)
+{
+    const test_fog *f = (const test_fog *)user;
+    hrm_medium m;
+    int c;
+    memset(&m, 0, sizeof m);
+    m.user = user;
+    m.Li = li;
+    if (cb) {
+        m.sigma = fog_sigma;
+    } else {
+        m.flags = HRM_MEDIUM_HOMOGENEOUS;
+        for (c = 0; c < HRM_CHANNELS; ++c) {
+            m.const_sigma_a[c] = (hrm_real)(f->st - f->ss);
+            m.const_sigma_s[c] = (hrm_real)f->ss;
+        }
+    }
+    return m;
+}

@@ -252,4 +252,14 @@ int is_error_result(const hrm_result *r); /* L = 0, Tr = 1 in every channel */
 int same_solve(const hrm_result *a, const hrm_result *b);
 int same_result(const hrm_result *a, const hrm_result *b);
 
+/* Homogeneous fog, sigma_t st and sigma_s ss in every channel: the first
+   member of a scene's user data where the medium is given to hrm either
+   way. fog_medium: as constants (cb 0) or as one sigma callback (cb 1,
+   fog_sigma), Li li, user the scene. */
+typedef struct test_fog {
+    double st, ss;
+} test_fog;
+void fog_sigma(void *user, hrm_real t, hrm_real sa[HRM_CHANNELS], hrm_real ss[HRM_CHANNELS]);
+hrm_medium fog_medium(void *user, hrm_spectrum_fn li, int cb);
+
 #endif /* HRM_TEST_COMMON_H */

@@ -1292,23 +1292,6 @@ static void br_lights(void)
     }
 }
 
-/* The fog of the light-description tests below (the first member of
-   each scene, the callbacks' user data): sigma_t and sigma_s. */
-typedef struct br_fog {
-    double st, ss;
-} br_fog;
-
-static void br_fog_sig(void *u, hrm_real t, hrm_real sa[NCH], hrm_real ss[NCH])
-{
-    const br_fog *f = (const br_fog *)u;
-    int c;
-    (void)t;
-    for (c = 0; c < NCH; ++c) {
-        sa[c] = (hrm_real)(f->st - f->ss);
-        ss[c] = (hrm_real)f->ss;
-    }
-}
-
 /* Every adaptive method with its defaults at rtol, through the plan of
    lights L[0..nl) on the ray [0, t1], the fog as constants (cb 0) or as
    sigma callbacks (cb 1), against ref: HRM_OK answers, those beyond 3 rtol
@@ -1321,7 +1304,7 @@ typedef struct br_tally {
     long ns_evals;
 } br_tally;
 
-static br_tally br_every_method(const br_fog *fog, hrm_spectrum_fn li, const hrm_light *L, int nl,
+static br_tally br_every_method(const test_fog *f, hrm_spectrum_fn li, const hrm_light *L, int nl,
                                 const hrm_real org[3], const hrm_real dir[3], double t1, double rtol, double ref,
                                 int cb)
 {
@@ -1337,19 +1320,7 @@ static br_tally br_every_method(const br_fog *fog, hrm_spectrum_fn li, const hrm
         hrm_result r;
         hrm_status st;
         double e;
-        memset(&m, 0, sizeof m);
-        m.user = (void *)fog;
-        m.Li = li;
-        if (cb) {
-            m.sigma = br_fog_sig;
-        } else {
-            int c;
-            m.flags = HRM_MEDIUM_HOMOGENEOUS;
-            for (c = 0; c < NCH; ++c) {
-                m.const_sigma_a[c] = (hrm_real)(fog->st - fog->ss);
-                m.const_sigma_s[c] = (hrm_real)fog->ss;
-            }
-        }
+        m = fog_medium((void *)f, li, cb);
         o.rtol = (hrm_real)rtol;
         hrm_light_options(L, nl, NULL, 0, org, dir, 0, (hrm_real)t1, &plan, &o);
         st = hrm_solve(&m, 0, (hrm_real)t1, &o, &r);
@@ -1385,7 +1356,7 @@ static br_tally br_every_method(const br_fog *fog, hrm_spectrum_fn li, const hrm
 /* A ray o + t d through fog past the lights L[0..nl) (this test's and the
    next's scene). */
 typedef struct br_ls_sc {
-    br_fog fog;
+    test_fog fog;
     double o[3], d[3];
     hrm_light L[2];
     int nl;
@@ -1607,7 +1578,7 @@ static void br_dark_foot(void)
    composite 8-point Gauss-Legendre split at the feet, 4000 panels a piece,
    within 1e-12 of 2000 (checked). */
 typedef struct br_tr_sc {
-    br_fog fog;
+    test_fog fog;
     double x[2], D[2], P[2];
 } br_tr_sc;
 
