@@ -4686,7 +4686,7 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE int hrm__rk_quad(hrm__ctx *c, const hr
         hrm__medium_miss(c, qs, ni->bw, ni->m, h, start->tau, pn[endj].tau, start->off, pn[endj].off, em);
     if (err && !c->expo && endj >= 0 && ni->c[0] == 0) hrm__rk_exp_miss(ni, qs, endj, h, (const hrm_real(*)[HRM__CH])f, em);
     if (err && !c->expo) {
-        const hrm_real *tq[HRM__MAX_STAGES], *fq[HRM__MAX_STAGES];
+        const hrm_real *tq[HRM__MAX_STAGES] = {0}, *fq[HRM__MAX_STAGES] = {0};
         for (j = 0; j < ni->m; ++j) {
             tq[j] = qs[j]->tau;
             fq[j] = f[j];
@@ -4806,7 +4806,7 @@ static HRM_DEVICE HRM__CALL int hrm__rk_stages_in(hrm__ctx *c, const hrm__tablea
     }
     if (err && c->coupled && !c->rte) {
         /* coupled tau: its stage values at the nodes (hrm__rk_tau_gap) */
-        const hrm_real *tq[HRM__MAX_STAGES], *fq[HRM__MAX_STAGES];
+        const hrm_real *tq[HRM__MAX_STAGES] = {0}, *fq[HRM__MAX_STAGES] = {0};
         hrm_real em[HRM__CH];
         hrm__fill(em, HRM__CH, 0);
         for (i = 0; i < ni->m; ++i) {

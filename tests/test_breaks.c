@@ -1582,51 +1582,30 @@ typedef struct br_tr_sc {
     double x[2], D[2], P[2];
 } br_tr_sc;
 
-static double br_tr_li1(const br_tr_sc *s, double t)
-{
-    double v = 0;
-    int i;
-    for (i = 0; i < 2; ++i) {
-        double r2 = (t - s->x[i]) * (t - s->x[i]) + s->D[i] * s->D[i];
-        v += s->P[i] / r2 * exp(-s->fog.st * sqrt(r2));
-    }
-    return v;
-}
-
-static double br_tr_f(const void *ctx, double t)
-{
-    const br_tr_sc *s = (const br_tr_sc *)ctx;
-    return s->fog.ss * br_tr_li1(s, t) * exp(-s->fog.st * t);
-}
-
-static void br_tr_li(void *u, hrm_real t, hrm_real out[NCH])
-{
-    int c;
-    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)br_tr_li1((const br_tr_sc *)u, (double)t);
-}
-
 static void br_transition(void)
 {
     static const br_tr_sc sc = {{0.0168, 0.00698}, {0.24541953, 4.3165289}, {0.020705174, 0.17341967}, {2.05, 1.82}};
     const double t1 = 6.8446667, rtol = real_is_float() ? 2e-4 : 1.4e-4;
+    static const double o3[3] = {0, 0, 0}, d3[3] = {1, 0, 0};
     double cut[4] = {0, sc.x[0], sc.x[1], t1}, ref = 0, ref2 = 0, tx, A, B, C, dl, edge[2];
-    hrm_light L[2];
-    hrm_real org[3] = {0, 0, 0}, dir[3] = {1, 0, 0};
+    br_ls_sc ls; /* the scene as lights for the host's Li */
+    hrm_light *L = ls.L;
+    hrm_real org[3], dir[3];
     hrm_ray_plan plan;
     hrm_options o = hrm_default_options(HRM_NESTED_SIMPSON);
     int i, cb;
-    for (i = 0; i < 3; ++i) {
-        ref += gl_integrate(br_tr_f, &sc, cut[i], cut[i + 1], 4000, 8, 0, 0);
-        ref2 += gl_integrate(br_tr_f, &sc, cut[i], cut[i + 1], 2000, 8, 0, 0);
-    }
-    CHECK(fabs(ref - ref2) <= 1e-12 * ref, "transition: reference converged (%.3g)", fabs(ref - ref2) / ref);
-    memset(L, 0, sizeof L);
+    br_ls_init(&ls, o3, d3, sc.fog.st, sc.fog.ss, 2, org, dir);
     for (i = 0; i < 2; ++i) {
         L[i].kind = HRM_LIGHT_POINT;
         L[i].position[0] = (hrm_real)sc.x[i];
         L[i].position[2] = (hrm_real)sc.D[i];
         L[i].power = (hrm_real)sc.P[i];
     }
+    for (i = 0; i < 3; ++i) {
+        ref += gl_integrate(br_ls_f, &ls, cut[i], cut[i + 1], 4000, 8, 0, 0);
+        ref2 += gl_integrate(br_ls_f, &ls, cut[i], cut[i + 1], 2000, 8, 0, 0);
+    }
+    CHECK(fabs(ref - ref2) <= 1e-12 * ref, "transition: reference converged (%.3g)", fabs(ref - ref2) / ref);
     /* P0 (D1^2 + (s - dl)^2) = e P1 (D0^2 + s^2), s = t - x0: for e = 1
        the crossing, the root between the feet; for e = 4 and 1/4 the
        band's edges, the roots nearest it */
@@ -1652,7 +1631,7 @@ static void br_transition(void)
           "transition: breakpoints at the band's edges (%d: %.9g %.9g, want %.9g %.9g)", o.nbreaks,
           o.nbreaks ? (double)o.breaks[0] : 0.0, o.nbreaks > 1 ? (double)o.breaks[1] : 0.0, edge[0], edge[1]);
     for (cb = 0; cb < 2; ++cb) {
-        br_tally k = br_every_method(&sc.fog, br_tr_li, L, 2, org, dir, t1, rtol, ref, cb);
+        br_tally k = br_every_method(&ls.fog, br_ls_li, L, 2, org, dir, t1, rtol, ref, cb);
         CHECK_INT(k.silent, 0, "transition (%s): adaptive methods HRM_OK beyond 3 rtol (%d HRM_OK of 7, worst %.3g "
                   "of rtol)", cb ? "callbacks" : "constants", k.ok, k.worst);
         CHECK(k.ok >= 4, "transition (%s): most adaptive methods HRM_OK (%d of 7)", cb ? "callbacks" : "constants",
