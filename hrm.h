@@ -5373,19 +5373,11 @@ static HRM_DEVICE HRM__CALL void hrm__ns_rule(const hrm__ctx *c, const hrm__pt *
     }
 }
 
-/* The fourth difference that five equally spaced samples f[0..4][ch]
-   over a width w predict, as an error of Simpson's rule: S2 - S1 (on the
-   halves, on the whole) is w / 12 times their fourth difference. Where
-   the function is resolved the differences fall geometrically, the
-   fourth about the third's square over the second; far below that S1 and
-   S2 agreed by chance, and w / 12 times that prediction is their error's
-   size instead. coherent: only where the two third differences agree in
-   sign and to within a factor 5/3 (a smooth trend the samples see whole;
-   noise, whose third differences are unrelated, is left to its own
-   estimate). 0: no prediction. */
-static HRM_DEVICE hrm_real hrm__fourth_pred(const hrm_real (*f)[HRM__CH], int ch, hrm_real w, int coherent)
+/* Five equally spaced samples f[0..4][ch]: their largest second
+   difference (returned) and their two third differences. */
+static HRM_DEVICE hrm_real hrm__diffs5(const hrm_real (*f)[HRM__CH], int ch, hrm_real *t0, hrm_real *t1)
 {
-    hrm_real d[5], d2 = 0, d3, t0, t1;
+    hrm_real d[5], d2 = 0;
     int k;
     for (k = 0; k < 5; ++k) d[k] = f[k][ch];
     for (k = 0; k < 4; ++k) d[k] = d[k + 1] - d[k];
@@ -5393,11 +5385,54 @@ static HRM_DEVICE hrm_real hrm__fourth_pred(const hrm_real (*f)[HRM__CH], int ch
         d[k] = d[k + 1] - d[k];
         d2 = HRM_FABS(d[k]) > d2 ? HRM_FABS(d[k]) : d2;
     }
-    t0 = d[1] - d[0]; /* the third differences */
-    t1 = d[2] - d[1];
-    if (coherent && !(t0 * t1 > 0 && HRM_FABS(t0 - t1) <= HRM__R(0.25) * HRM_FABS(t0 + t1))) return 0;
+    *t0 = d[1] - d[0];
+    *t1 = d[2] - d[1];
+    return d2;
+}
+
+/* Two third differences that agree in sign and to within a factor 5/3:
+   a smooth trend the samples see whole (noise's are unrelated). */
+static HRM_DEVICE int hrm__coherent(hrm_real t0, hrm_real t1)
+{
+    return t0 * t1 > 0 && HRM_FABS(t0 - t1) <= HRM__R(0.25) * HRM_FABS(t0 + t1);
+}
+
+/* The fourth difference that five equally spaced samples f[0..4][ch]
+   over a width w predict, as an error of Simpson's rule: S2 - S1 (on the
+   halves, on the whole) is w / 12 times their fourth difference. Where
+   the function is resolved the differences fall geometrically, the
+   fourth about the third's square over the second; far below that S1 and
+   S2 agreed by chance, and w / 12 times that prediction is their error's
+   size instead. coherent: only where the third differences are
+   (hrm__coherent; noise is left to its own estimate). 0: no prediction. */
+static HRM_DEVICE hrm_real hrm__fourth_pred(const hrm_real (*f)[HRM__CH], int ch, hrm_real w, int coherent)
+{
+    hrm_real t0, t1, d3, d2 = hrm__diffs5(f, ch, &t0, &t1);
+    if (coherent && !hrm__coherent(t0, t1)) return 0;
     d3 = HRM_FABS(t0) > HRM_FABS(t1) ? HRM_FABS(t0) : HRM_FABS(t1);
     return d2 > 0 ? HRM_FABS(w) / 12 * (d3 / d2) * d3 : 0;
+}
+
+/* Whether five equally spaced samples f[0..4][ch] look resolved, so that
+   their S2 - S1 may be trusted to fall as a smooth function's
+   (hrm__wf_trust): of one sign within a factor 8 (no decay of more than
+   two e-folds across them), and third differences coherent or below an
+   eighth of the largest second difference. An Li whose slope jumps
+   between them fails (a host's shadow ray of a few fixed steps, its
+   nodes crossing a cloud's edge one by one: Li's slope 5 times steeper
+   twice in 0.01), and so does a decay they do not resolve: a kink 0.003
+   past a sample, the four after it on an exponential they cannot tell
+   from a smooth one. */
+static HRM_DEVICE int hrm__smooth5(const hrm_real (*f)[HRM__CH], int ch)
+{
+    hrm_real t0, t1, d2 = hrm__diffs5(f, ch, &t0, &t1), lo = f[0][ch], hi = f[0][ch];
+    int k;
+    for (k = 1; k < 5; ++k) {
+        lo = f[k][ch] < lo ? f[k][ch] : lo;
+        hi = f[k][ch] > hi ? f[k][ch] : hi;
+    }
+    if (!(lo > 0 ? hi <= 8 * lo : hi < 0 && lo >= 8 * hi)) return 0;
+    return hrm__coherent(t0, t1) || (HRM_FABS(t0) <= d2 / 8 && HRM_FABS(t1) <= d2 / 8);
 }
 
 /* The interval [a, b] from its samples at a, a + h/4, a + h/2, a + 3h/4, b
@@ -5410,7 +5445,7 @@ static HRM_DEVICE hrm_real hrm__fourth_pred(const hrm_real (*f)[HRM__CH], int ch
    stays the halves' sum: nondecreasing. */
 static HRM_DEVICE HRM__CALL void hrm__ns_five(const hrm__ctx *c, const hrm__pt *a, const hrm__pt *ql,
                          const hrm__pt *m, const hrm__pt *qr, const hrm__pt *b,
-                         const hrm_real *tau_a, hrm_real *V, hrm_real *E, hrm_real *M)
+                         const hrm_real *tau_a, hrm_real *V, hrm_real *E, hrm_real *M, char *smooth)
 {
     hrm_real s1[HRM__NY], e1[HRM__NY], vl[HRM__NY], vr[HRM__NY], tm[HRM__NY], f[5][HRM__CH];
     int i;
@@ -5429,6 +5464,7 @@ static HRM_DEVICE HRM__CALL void hrm__ns_five(const hrm__ctx *c, const hrm__pt *
            to 1/20 of their error */
         hrm_real pred = hrm__fourth_pred((const hrm_real(*)[HRM__CH])f, i, b->p - a->p, 0);
         if (pred > HRM_FABS(E[HRM__CH + i])) E[HRM__CH + i] = E[HRM__CH + i] < 0 ? -pred : pred;
+        if (smooth) smooth[i] = (char)hrm__smooth5((const hrm_real(*)[HRM__CH])f, i);
     }
     hrm__fill(M, HRM__CH, 0);
     if (c->mcheck) {
@@ -5487,7 +5523,7 @@ static HRM_DEVICE HRM__CALL void hrm__ns_local_run(hrm__ctx *c, const hrm__pt *a
         } else {
             hrm__eval(c, (cur.a.p + cur.m.p) / 2, &ql);
             hrm__eval(c, (cur.m.p + cur.b.p) / 2, &qr);
-            hrm__ns_five(c, &cur.a, &ql, &cur.m, &qr, &cur.b, acc, val, err, miss);
+            hrm__ns_five(c, &cur.a, &ql, &cur.m, &qr, &cur.b, acc, val, err, miss, NULL);
             for (i = 0; i < HRM__NY; ++i) {
                 y1[i] = acc[i] + val[i];
                 err[i] /= 5;
@@ -5964,6 +6000,7 @@ typedef struct hrm__iv {
     int s[4]; /* nested Simpson: its samples at a, a + h/4, a + h/2, a + 3h/4 */
     hrm__gk_io io; /* Gauss-Kronrod: ends, check sample, centre */
     char fell[HRM__NY]; /* nested Simpson: |S2 - S1| fell 8 times at its split */
+    char smooth[HRM__CH]; /* nested Simpson: its samples of L' look smooth (hrm__smooth5) */
     int rough; /* splits in a row at which it kept 30% of its parent's estimate */
     hrm_real score; /* its estimates over their shares (hrm__wf_sum) */
 } hrm__iv;
@@ -5996,7 +6033,7 @@ static HRM_DEVICE HRM__CALL void hrm__wf_rule(hrm__ctx *c, hrm__wf *w, hrm__iv *
     if (w->pool) {
         hrm__pt *P = w->pool;
         hrm__ns_five(c, &P[v->s[0]], &P[v->s[1]], &P[v->s[2]], &P[v->s[3]], &P[b_sample], zero,
-                     v->V, v->E, v->M);
+                     v->V, v->E, v->M, v->smooth);
     } else {
         hrm__gk(c, v->a, v->b, zero, v->V, v->E, &v->io);
         memcpy(v->M, v->io.M, sizeof v->M);
@@ -6022,10 +6059,13 @@ static HRM_DEVICE HRM__CALL void hrm__wf_rule(hrm__ctx *c, hrm__wf *w, hrm__iv *
    to the parent's |S2 - S1| (at least the square of the fall: a miss that
    cancels by chance is no evidence), where smaller than 1/5, is the
    halves' factor instead. The regime counts as reached when D fell (8
-   times) at this split and at the parent's own: until then S2 - S1 itself
+   times) at this split and at the parent's own, and only for a half
+   whose samples look resolved (hrm__smooth5): until then S2 - S1 itself
    is the estimate, since a boundary layer that a few samples cannot
-   resolve (a thick medium) or an oscillation they alias leaves the
-   corrected sum as far off as S2 and S1 are apart. (Measured on the
+   resolve (a thick medium), an oscillation they alias or a kink between
+   them (falls of 8 by chance: make render's cloud, a pixel 5.5 rtol off
+   with HRM_OK at rtol 1e-3) leaves the corrected sum as far off as S2
+   and S1 are apart. (Measured on the
    bench's smooth scenes, rtol 1e-2..1e-10: worst HRM_OK run 0.64 rtol,
    median 0.009-0.022 (0.006 with the fall itself as the floor); one fall
    of 8 let smoke through at 5.7 rtol, a fall of 16 once made a budget of
@@ -6049,9 +6089,9 @@ static HRM_DEVICE HRM__CALL void hrm__wf_trust(const hrm__ctx *c, const hrm__iv 
             q = q < cap ? q : cap;
         }
         fl = 16 * HRM__EPS * HRM_FABS(l->V[j]);
-        l->E[j] = l->D[j] * q > fl ? l->D[j] * q : fl;
+        if (!square || j < HRM__CH || l->smooth[j - HRM__CH]) l->E[j] = l->D[j] * q > fl ? l->D[j] * q : fl;
         fl = 16 * HRM__EPS * HRM_FABS(r->V[j]);
-        r->E[j] = r->D[j] * q > fl ? r->D[j] * q : fl;
+        if (!square || j < HRM__CH || r->smooth[j - HRM__CH]) r->E[j] = r->D[j] * q > fl ? r->D[j] * q : fl;
     }
     hrm__with_miss(l->E, l->M);
     hrm__with_miss(r->E, r->M);
@@ -6384,7 +6424,7 @@ static HRM_DEVICE HRM__CALL void hrm__nested_simpson(hrm__ctx *c, int panels, hr
         const hrm__pt *P = pool;
         int b = k + 1 < w.n ? iv[k + 1].s[0] : w.end;
         hrm_real V[HRM__NY], E[HRM__NY], y1[HRM__NY], M[HRM__CH];
-        hrm__ns_five(c, &P[v->s[0]], &P[v->s[1]], &P[v->s[2]], &P[v->s[3]], &P[b], acc, V, E, M);
+        hrm__ns_five(c, &P[v->s[0]], &P[v->s[1]], &P[v->s[2]], &P[v->s[3]], &P[b], acc, V, E, M, NULL);
         for (i = 0; i < HRM__NY; ++i) {
             y1[i] = acc[i] + V[i];
             E[i] /= 5;
