@@ -340,13 +340,13 @@
    Gauss-Kronrod give a step atol f + rtol max(|dL|, f |L|), f its share.
    Each estimate is of the value returned (nested Simpson's |S2 - S1|, at
    least the 4th difference its 3rd and 2nd predict; Gauss-Kronrod's |K -
-   G|; each scaled once splits show its rate; the pairs' embedded estimate
-   and their stage values' Newton series, the larger), raised where nodes
-   miss the layer's 1 - Tr (decoupled tau: nodes that alias the medium) or
-   a pair's neighbouring nodes lie > 1 optical depth and a factor 20 of
-   the integrand apart. An interval whose error does not shrink may take
-   rtol/16 of |L|, 16 times a call. Worst HRM_OK run on the smooth scenes:
-   2.3 rtol, every default (bench/results/summary.md).
+   G|; each scaled once splits show its rate and samples look resolved;
+   the pairs' embedded estimate and stage values' Newton series, the
+   larger), raised where nodes miss the layer's 1 - Tr (decoupled tau),
+   a pair's neighbours lie > 1 optical depth and 20 times apart, or other
+   neighbours 8 times (no fit: half the gap). An interval whose error does
+   not shrink may take rtol/16 of |L|, 16 times a call. Worst HRM_OK run on
+   the smooth scenes: 2.3 rtol, every default (bench/results/summary.md).
    Missed tolerances return the best estimate and a warning: H_MIN (a step
    at h_min failed), MAX_EVALS (stats.evals <= max_evals, a user warp's
    calls 4 max_evals), STORAGE (a finish HRM_MAX_DEPTH deep), ROUNDOFF
@@ -5373,6 +5373,26 @@ static HRM_DEVICE HRM__CALL void hrm__ns_rule(const hrm__ctx *c, const hrm__pt *
     }
 }
 
+/* Where two neighbouring nodes of a rule (at x[j] and x[j + 1] of [-1,
+   1], half width hl), both above 0, differ by more than 8 times, the
+   integrand falls faster than they resolve, and the two rules of an
+   estimate, which both lean on them, can agree by chance (an Li with
+   three slope jumps on one K15 interval: |K - G| 1.1e-6, K 5.4e-3 off,
+   85 rtol with HRM_OK at rtol 1e-4): half of what the larger holds over
+   their spacing is a miss (*m, where larger; never scaled, as the
+   medium's). f: L' at the nodes, ascending. Nested Simpson (hrm__ns_five)
+   and Gauss-Kronrod (hrm__gk) without a fit, whose exponential follows a
+   decay of Tr. */
+static HRM_DEVICE void hrm__gap_miss(const hrm_real *x, const hrm_real *f, int n, hrm_real hl, hrm_real *m)
+{
+    int j;
+    for (j = 0; j + 1 < n; ++j) {
+        hrm_real hi = f[j] > f[j + 1] ? f[j] : f[j + 1], lo = f[j] > f[j + 1] ? f[j + 1] : f[j];
+        hrm_real gap = (x[j + 1] - x[j]) * HRM_FABS(hl) * hi / 2;
+        if (lo > 0 && 8 * lo < hi && gap > *m) *m = gap;
+    }
+}
+
 /* Five equally spaced samples f[0..4][ch]: their largest second
    difference (returned) and their two third differences. */
 static HRM_DEVICE hrm_real hrm__diffs5(const hrm_real (*f)[HRM__CH], int ch, hrm_real *t0, hrm_real *t1)
@@ -5441,14 +5461,12 @@ static HRM_DEVICE int hrm__smooth5(const hrm_real (*f)[HRM__CH], int ch)
    S2's error once the halves are in the asymptotic regime; an oscillation
    that a few samples alias can make S1 and S2 agree before it. A divisor
    of 5 keeps a factor 3 of margin: on the bench's smooth scenes (rtol
-   1e-2..1e-10) the worst HRM_OK run was at 1.0 rtol, 11 with 15. Where
-   two neighbouring samples (both above 0) differ by more than 8 times,
-   the integrand falls faster than they resolve, and E is at least half
-   of what the larger holds over their spacing, h/4 (an Li whose slope
-   jumps twice, falling 13 times between two samples of a first interval
-   whose S1 and S2 agreed to 1/21 of their error: 7.7 rtol off with
-   HRM_OK at rtol 1e-3, 17 samples). tau stays the halves' sum:
-   nondecreasing. */
+   1e-2..1e-10) the worst HRM_OK run was at 1.0 rtol, 11 with 15. M: the
+   medium check's miss, and where two neighbouring samples differ by more
+   than 8 times, theirs (hrm__gap_miss: an Li whose slope jumps twice,
+   falling 13 times between two samples of a first interval whose S1 and
+   S2 agreed to 1/21 of their error, 7.7 rtol off with HRM_OK at rtol
+   1e-3 on 17 samples). tau stays the halves' sum: nondecreasing. */
 static HRM_DEVICE HRM__CALL void hrm__ns_five(const hrm__ctx *c, const hrm__pt *a, const hrm__pt *ql,
                          const hrm__pt *m, const hrm__pt *qr, const hrm__pt *b,
                          const hrm_real *tau_a, hrm_real *V, hrm_real *E, hrm_real *M, char *smooth)
@@ -5470,13 +5488,6 @@ static HRM_DEVICE HRM__CALL void hrm__ns_five(const hrm__ctx *c, const hrm__pt *
            to 1/20 of their error */
         hrm_real pred = hrm__fourth_pred((const hrm_real(*)[HRM__CH])f, i, b->p - a->p, 0);
         if (pred > HRM_FABS(E[HRM__CH + i])) E[HRM__CH + i] = E[HRM__CH + i] < 0 ? -pred : pred;
-        for (k = 0; k < 4; ++k) {
-            hrm_real hi = f[k][i] > f[k + 1][i] ? f[k][i] : f[k + 1][i];
-            hrm_real lo = f[k][i] > f[k + 1][i] ? f[k + 1][i] : f[k][i];
-            hrm_real gap = HRM_FABS(b->p - a->p) / 8 * hi; /* (h/4) hi / 2 */
-            if (lo > 0 && 8 * lo < hi && gap > HRM_FABS(E[HRM__CH + i]))
-                E[HRM__CH + i] = E[HRM__CH + i] < 0 ? -gap : gap;
-        }
         if (smooth) smooth[i] = (char)hrm__smooth5((const hrm_real(*)[HRM__CH])f, i);
     }
     hrm__fill(M, HRM__CH, 0);
@@ -5493,6 +5504,12 @@ static HRM_DEVICE HRM__CALL void hrm__ns_five(const hrm__ctx *c, const hrm__pt *
         nodes[3] = qr;
         nodes[4] = b;
         hrm__medium_miss(c, nodes, boole, 5, b->p - a->p, a->tau, b->tau, a->off, b->off, M);
+    }
+    for (i = 0; i < HRM__CH; ++i) {
+        static const hrm_real x5[5] = {-1, HRM__R(-0.5), 0, HRM__R(0.5), 1};
+        hrm_real fc[5];
+        for (k = 0; k < 5; ++k) fc[k] = f[k][i];
+        hrm__gap_miss(x5, fc, 5, (b->p - a->p) / 2, &M[i]);
     }
 }
 
@@ -5830,6 +5847,7 @@ static HRM_DEVICE HRM__CALL void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, co
         K[n] = rk * hl;
         if (is_tau) K[n] += c->sbar[ch] * (off_b - off_a);
         ek[n] = HRM_FABS((rk - rg) * hl);
+        if (!is_tau && !c->expo) hrm__gap_miss(R->x, f, N, hl, &io->M[ch]);
         if (c->expo && !is_tau) {
             K[n] = eK[ch];
             ek[n] = HRM_FABS(eK[ch] - eG[ch]) + (uK[ch] > uG[ch] ? uK[ch] : uG[ch]);
