@@ -5440,7 +5440,7 @@ static HRM_DEVICE int hrm__coherent(hrm_real t0, hrm_real t1)
    the function is resolved the differences fall geometrically, the
    fourth about the third's square over the second; far below that S1 and
    S2 agreed by chance, and w / 12 times that prediction is their error's
-   size instead. coherent: only where the third differences are
+   size instead. coherent: only where the third differences are coherent
    (hrm__coherent; noise is left to its own estimate). 0: no prediction. */
 static HRM_DEVICE hrm_real hrm__fourth_pred(const hrm_real (*f)[HRM__CH], int ch, hrm_real w, int coherent)
 {
@@ -5460,7 +5460,7 @@ static HRM_DEVICE hrm_real hrm__fourth_pred(const hrm_real (*f)[HRM__CH], int ch
    twice in 0.01), and so does a decay they do not resolve: a kink 0.003
    past a sample, the four after it on an exponential they cannot tell
    from a smooth one. */
-static HRM_DEVICE int hrm__smooth5(const hrm_real (*f)[HRM__CH], int ch)
+static HRM_DEVICE int hrm__resolved5(const hrm_real (*f)[HRM__CH], int ch)
 {
     hrm_real t0, t1, d2 = hrm__diffs5(f, ch, &t0, &t1), lo = f[0][ch], hi = f[0][ch];
     int k;
@@ -5486,7 +5486,7 @@ static HRM_DEVICE int hrm__smooth5(const hrm_real (*f)[HRM__CH], int ch)
    1e-3 on 17 samples). tau stays the halves' sum: nondecreasing. */
 static HRM_DEVICE HRM__CALL void hrm__ns_five(const hrm__ctx *c, const hrm__pt *a, const hrm__pt *ql,
                          const hrm__pt *m, const hrm__pt *qr, const hrm__pt *b,
-                         const hrm_real *tau_a, hrm_real *V, hrm_real *E, hrm_real *M, char *smooth)
+                         const hrm_real *tau_a, hrm_real *V, hrm_real *E, hrm_real *M, char *resolved)
 {
     hrm_real s1[HRM__NY], e1[HRM__NY], vl[HRM__NY], vr[HRM__NY], tm[HRM__NY], f[5][HRM__CH];
     int i, k;
@@ -5505,7 +5505,7 @@ static HRM_DEVICE HRM__CALL void hrm__ns_five(const hrm__ctx *c, const hrm__pt *
            to 1/20 of their error */
         hrm_real pred = hrm__fourth_pred((const hrm_real(*)[HRM__CH])f, i, b->p - a->p, 0);
         if (pred > HRM_FABS(E[HRM__CH + i])) E[HRM__CH + i] = E[HRM__CH + i] < 0 ? -pred : pred;
-        if (smooth) smooth[i] = (char)hrm__smooth5((const hrm_real(*)[HRM__CH])f, i);
+        if (resolved) resolved[i] = (char)hrm__resolved5((const hrm_real(*)[HRM__CH])f, i);
     }
     hrm__fill(M, HRM__CH, 0);
     if (c->mcheck) {
@@ -6048,7 +6048,7 @@ typedef struct hrm__iv {
     int s[4]; /* nested Simpson: its samples at a, a + h/4, a + h/2, a + 3h/4 */
     hrm__gk_io io; /* Gauss-Kronrod: ends, check sample, centre */
     char fell[HRM__NY]; /* nested Simpson: |S2 - S1| fell 8 times at its split */
-    char smooth[HRM__CH]; /* nested Simpson: its samples of L' look smooth (hrm__smooth5) */
+    char resolved[HRM__CH]; /* nested Simpson: its samples of L' look resolved (hrm__resolved5) */
     int rough; /* splits in a row at which it kept 30% of its parent's estimate */
     hrm_real score; /* its estimates over their shares (hrm__wf_sum) */
 } hrm__iv;
@@ -6081,7 +6081,7 @@ static HRM_DEVICE HRM__CALL void hrm__wf_rule(hrm__ctx *c, hrm__wf *w, hrm__iv *
     if (w->pool) {
         hrm__pt *P = w->pool;
         hrm__ns_five(c, &P[v->s[0]], &P[v->s[1]], &P[v->s[2]], &P[v->s[3]], &P[b_sample], zero,
-                     v->V, v->E, v->M, v->smooth);
+                     v->V, v->E, v->M, v->resolved);
     } else {
         hrm__gk(c, v->a, v->b, zero, v->V, v->E, &v->io);
         memcpy(v->M, v->io.M, sizeof v->M);
@@ -6108,7 +6108,7 @@ static HRM_DEVICE HRM__CALL void hrm__wf_rule(hrm__ctx *c, hrm__wf *w, hrm__iv *
    cancels by chance is no evidence), where smaller than 1/5, is the
    halves' factor instead. The regime counts as reached when D fell (8
    times) at this split and at the parent's own, and only for a half
-   whose samples look resolved (hrm__smooth5): until then S2 - S1 itself
+   whose samples look resolved (hrm__resolved5): until then S2 - S1 itself
    is the estimate, since a boundary layer that a few samples cannot
    resolve (a thick medium), an oscillation they alias or a kink between
    them (falls of 8 by chance: make render's cloud, a pixel 5.5 rtol off
@@ -6137,9 +6137,9 @@ static HRM_DEVICE HRM__CALL void hrm__wf_trust(const hrm__ctx *c, const hrm__iv 
             q = q < cap ? q : cap;
         }
         fl = 16 * HRM__EPS * HRM_FABS(l->V[j]);
-        if (!square || j < HRM__CH || l->smooth[j - HRM__CH]) l->E[j] = l->D[j] * q > fl ? l->D[j] * q : fl;
+        if (!square || j < HRM__CH || l->resolved[j - HRM__CH]) l->E[j] = l->D[j] * q > fl ? l->D[j] * q : fl;
         fl = 16 * HRM__EPS * HRM_FABS(r->V[j]);
-        if (!square || j < HRM__CH || r->smooth[j - HRM__CH]) r->E[j] = r->D[j] * q > fl ? r->D[j] * q : fl;
+        if (!square || j < HRM__CH || r->resolved[j - HRM__CH]) r->E[j] = r->D[j] * q > fl ? r->D[j] * q : fl;
     }
     hrm__with_miss(l->E, l->M);
     hrm__with_miss(r->E, r->M);
