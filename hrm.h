@@ -5424,15 +5424,17 @@ static HRM_DEVICE HRM__CALL void hrm__ns_rule(const hrm__ctx *c, const hrm__pt *
    three slope jumps on one K15 interval: |K - G| 1.1e-6, K 5.4e-3 off,
    85 rtol with HRM_OK at rtol 1e-4): half of what the larger holds over
    their spacing is a miss (*m, where larger; never scaled, as the
-   medium's). f: L' at the nodes, ascending. Nested Simpson (hrm__ns_five)
-   and Gauss-Kronrod (hrm__gk) without a fit, whose exponential follows a
-   decay of Tr. */
-static HRM_DEVICE void hrm__gap_miss(const hrm_real *x, const hrm_real *f, int n, hrm_real hl, hrm_real *m)
+   medium's). f: L' at the nodes, ascending; r: what differs 8 times, f
+   itself, or with an exponential fit, which follows the decay of Tr, the
+   fitted values (Tr's local exponential divided out, as hrm__rk_fit_gap).
+   Nested Simpson (hrm__ns_five) and Gauss-Kronrod (hrm__gk). */
+static HRM_DEVICE void hrm__gap_miss(const hrm_real *x, const hrm_real *r, const hrm_real *f, int n, hrm_real hl,
+                                     hrm_real *m)
 {
     int j;
     for (j = 0; j + 1 < n; ++j) {
-        hrm_real hi = f[j] > f[j + 1] ? f[j] : f[j + 1], lo = f[j] > f[j + 1] ? f[j + 1] : f[j];
-        hrm_real gap = (x[j + 1] - x[j]) * HRM_FABS(hl) * hi / 2;
+        hrm_real hi = r[j] > r[j + 1] ? r[j] : r[j + 1], lo = r[j] > r[j + 1] ? r[j + 1] : r[j];
+        hrm_real gap = (x[j + 1] - x[j]) * HRM_FABS(hl) * (f[j] > f[j + 1] ? f[j] : f[j + 1]) / 2;
         if (lo > 0 && 8 * lo < hi && gap > *m) *m = gap;
     }
 }
@@ -5553,7 +5555,7 @@ static HRM_DEVICE HRM__CALL void hrm__ns_five(const hrm__ctx *c, const hrm__pt *
         static const hrm_real x5[5] = {-1, HRM__R(-0.5), 0, HRM__R(0.5), 1};
         hrm_real fc[5];
         for (k = 0; k < 5; ++k) fc[k] = f[k][i];
-        hrm__gap_miss(x5, fc, 5, (b->p - a->p) / 2, &M[i]);
+        hrm__gap_miss(x5, fc, fc, 5, (b->p - a->p) / 2, &M[i]);
     }
 }
 
@@ -5808,6 +5810,7 @@ static HRM_DEVICE HRM__CALL void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, co
     hrm__pt pt[15];
     hrm_real hl = (b - a) / 2, mid = (a + b) / 2, off_a = 0, off_b = 0, J, lw[15], big = -1;
     hrm_real eK[HRM__CH], eG[HRM__CH], uK[HRM__CH], uG[HRM__CH], ta_at[HRM__CH];
+    hrm_real gfit[HRM__EFIT_MAX][HRM__CH]; /* with a fit, its fitted values at the nodes */
     hrm_real wmiss;
     int j, l, n, N = R->n, chk = io->hc && (io->xc - a) * (io->xc - b) < 0, ta_known = 0, je;
 
@@ -5858,11 +5861,11 @@ static HRM_DEVICE HRM__CALL void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, co
     if (c->expo) {
         /* K and G against the exact local exponential */
         hrm__pt pg[HRM__EFIT_MAX];
-        hrm_real mass[HRM__CH], g[HRM__EFIT_MAX][HRM__CH];
+        hrm_real mass[HRM__CH];
         for (j = 0, l = 0; j < N; ++j)
             if (R->wg[j] != 0) pg[l++] = pt[j];
-        hrm__efit_panel(c, &c->ef[1], pg, hl, eG, mass, g, uG);
-        hrm__efit_panel(c, &c->ef[0], pt, hl, eK, mass, g, uK);
+        hrm__efit_panel(c, &c->ef[1], pg, hl, eG, mass, gfit, uG);
+        hrm__efit_panel(c, &c->ef[0], pt, hl, eK, mass, gfit, uK);
     }
     for (n = 0; n < HRM__NY; ++n) {
         int ch = n % HRM__CH, is_tau = n < HRM__CH;
@@ -5891,7 +5894,11 @@ static HRM_DEVICE HRM__CALL void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, co
         K[n] = rk * hl;
         if (is_tau) K[n] += c->sbar[ch] * (off_b - off_a);
         ek[n] = HRM_FABS((rk - rg) * hl);
-        if (!is_tau && !c->expo) hrm__gap_miss(R->x, f, N, hl, &io->M[ch]);
+        if (!is_tau) {
+            hrm_real gc[15];
+            for (j = 0; j < N; ++j) gc[j] = c->expo ? gfit[j][ch] : f[j];
+            hrm__gap_miss(R->x, gc, f, N, hl, &io->M[ch]);
+        }
         if (c->expo && !is_tau) {
             K[n] = eK[ch];
             ek[n] = HRM_FABS(eK[ch] - eG[ch]) + (uK[ch] > uG[ch] ? uK[ch] : uG[ch]);
