@@ -1293,8 +1293,9 @@ static void ad_workspace(void)
    take for the asymptotic rate).
    ======================================================================== */
 typedef struct ad_kink_scene {
+    test_fog fog;      /* sigma_t, and sigma_s 0.9 of it (fog_medium) */
     int nk;
-    double k[3], s[4], sigma; /* knots, g's slope on each piece (s[0] = 0) */
+    double k[3], s[4]; /* knots, g's slope on each piece (s[0] = 0) */
 } ad_kink_scene;
 
 /* g at t, and L over [0, 1] */
@@ -1311,9 +1312,9 @@ static double ad_kink_L(const ad_kink_scene *p)
     double L = 0, a = 0;
     int i;
     for (i = 0; i <= p->nk; ++i) {
-        double b = i < p->nk ? p->k[i] : 1, r = p->sigma + p->s[i];
-        /* sigma_s e^-(sigma t + g(t)) over [a, b], g linear there */
-        L += 0.9 * p->sigma * exp(-p->sigma * a - ad_kink_g(p, a)) * -expm1(-r * (b - a)) / r;
+        double b = i < p->nk ? p->k[i] : 1, r = p->fog.st + p->s[i];
+        /* sigma_s e^-(sigma_t t + g(t)) over [a, b], g linear there */
+        L += p->fog.ss * exp(-p->fog.st * a - ad_kink_g(p, a)) * -expm1(-r * (b - a)) / r;
         a = b;
     }
     return L;
@@ -1326,17 +1327,6 @@ static void ad_kink_li(void *u, hrm_real t, hrm_real out[NCH])
     for (c = 0; c < NCH; ++c) out[c] = (hrm_real)v;
 }
 
-static void ad_kink_sig(void *u, hrm_real t, hrm_real sa[NCH], hrm_real ss[NCH])
-{
-    const ad_kink_scene *p = (const ad_kink_scene *)u;
-    int c;
-    (void)t;
-    for (c = 0; c < NCH; ++c) {
-        sa[c] = (hrm_real)(0.1 * p->sigma);
-        ss[c] = (hrm_real)(0.9 * p->sigma);
-    }
-}
-
 /* One solve of scene p: form v (0 nested Simpson, 1-4 Gauss-Kronrod K15,
    K7, local K15, local K7, 5-9 the pairs: Dormand-Prince, Fehlberg,
    Cash-Karp, Verner, Bogacki-Shampine; 10-14 the same with an exponential
@@ -1346,25 +1336,13 @@ static void ad_kink_sig(void *u, hrm_real t, hrm_real sa[NCH], hrm_real ss[NCH])
    status, and its error over rtol into *e. */
 static hrm_status ad_kink_solve(const ad_kink_scene *p, int v, double rtol, int med, int w, double *e)
 {
-    hrm_medium m;
     static const hrm_method pairs[5] = {HRM_DORMAND_PRINCE, HRM_FEHLBERG, HRM_CASH_KARP, HRM_VERNER,
                                         HRM_BOGACKI_SHAMPINE};
-    hrm_options o = hrm_default_options(v >= 5 && v < 15 ? pairs[(v - 5) % 5] : v ? HRM_GAUSS_KRONROD : HRM_NESTED_SIMPSON);
+    hrm_method method = v >= 5 && v < 15 ? pairs[(v - 5) % 5] : v ? HRM_GAUSS_KRONROD : HRM_NESTED_SIMPSON;
+    hrm_medium m = fog_medium((void *)p, ad_kink_li, med);
+    hrm_options o = hrm_default_options(method);
     hrm_result r;
     hrm_status st;
-    int c;
-    memset(&m, 0, sizeof m);
-    m.user = (void *)p;
-    m.Li = ad_kink_li;
-    if (med) {
-        m.sigma = ad_kink_sig;
-    } else {
-        m.flags = HRM_MEDIUM_HOMOGENEOUS;
-        for (c = 0; c < NCH; ++c) {
-            m.const_sigma_a[c] = (hrm_real)(0.1 * p->sigma);
-            m.const_sigma_s[c] = (hrm_real)(0.9 * p->sigma);
-        }
-    }
     o.rtol = (hrm_real)rtol;
     if (v == 2 || v == 4 || v == 16 || v == 18) o.gk_rule = HRM_GK_K7;
     if (v == 3 || v == 4 || v >= 17) o.gk_mode = HRM_GK_LOCAL;
@@ -1382,21 +1360,21 @@ static hrm_status ad_kink_solve(const ad_kink_scene *p, int v, double rtol, int 
 
 static void ad_kink(void)
 {
-    static const ad_kink_scene scenes[15] = {{1, {0.3776}, {0, 53.1}, 1.48},
-                                            {1, {0.3765}, {0, 52.9}, 1.158},
-                                            {1, {0.3777}, {0, 48.3}, 0.798},
-                                            {2, {0.2766, 0.4078}, {0, 10.7, 38.0}, 3.341},
-                                            {3, {0.2617, 0.3218, 0.3522}, {0, 27.4, 76.8, 106.1}, 0.925},
-                                            {3, {0.3331, 0.3985, 0.4144}, {0, 8.8, 29.4, 47.8}, 3.111},
-                                            {1, {0.3277}, {0, 54.4}, 0.615},
-                                            {1, {0.4364}, {0, 56.7}, 1.394},
-                                            {2, {0.3075, 0.3943}, {0, 33.2, 85.9}, 0.644},
-                                            {2, {0.3259, 0.3333}, {0, 17.1, 57.3}, 1.417},
-                                            {2, {0.3012, 0.3829}, {0, 37.3, 87.0}, 4.458},
-                                            {1, {0.3289}, {0, 59.6}, 1.011},
-                                            {2, {0.4350, 0.4740}, {0, 57.0, 103.9}, 0.849},
-                                            {2, {0.3151, 0.4618}, {0, 43.2, 69.6}, 0.957},
-                                            {1, {0.2932}, {0, 59.2}, 0.691}};
+    static const ad_kink_scene scenes[15] = {{{1.48, 0.9 * 1.48}, 1, {0.3776}, {0, 53.1}},
+                                            {{1.158, 0.9 * 1.158}, 1, {0.3765}, {0, 52.9}},
+                                            {{0.798, 0.9 * 0.798}, 1, {0.3777}, {0, 48.3}},
+                                            {{3.341, 0.9 * 3.341}, 2, {0.2766, 0.4078}, {0, 10.7, 38.0}},
+                                            {{0.925, 0.9 * 0.925}, 3, {0.2617, 0.3218, 0.3522}, {0, 27.4, 76.8, 106.1}},
+                                            {{3.111, 0.9 * 3.111}, 3, {0.3331, 0.3985, 0.4144}, {0, 8.8, 29.4, 47.8}},
+                                            {{0.615, 0.9 * 0.615}, 1, {0.3277}, {0, 54.4}},
+                                            {{1.394, 0.9 * 1.394}, 1, {0.4364}, {0, 56.7}},
+                                            {{0.644, 0.9 * 0.644}, 2, {0.3075, 0.3943}, {0, 33.2, 85.9}},
+                                            {{1.417, 0.9 * 1.417}, 2, {0.3259, 0.3333}, {0, 17.1, 57.3}},
+                                            {{4.458, 0.9 * 4.458}, 2, {0.3012, 0.3829}, {0, 37.3, 87.0}},
+                                            {{1.011, 0.9 * 1.011}, 1, {0.3289}, {0, 59.6}},
+                                            {{0.849, 0.9 * 0.849}, 2, {0.4350, 0.4740}, {0, 57.0, 103.9}},
+                                            {{0.957, 0.9 * 0.957}, 2, {0.3151, 0.4618}, {0, 43.2, 69.6}},
+                                            {{0.691, 0.9 * 0.691}, 1, {0.2932}, {0, 59.2}}};
     static const char *const names[19] = {"nested-simpson", "gk K15", "gk K7", "gk local K15", "gk local K7",
                                           "dormand-prince", "fehlberg", "cash-karp", "verner", "bogacki-shampine",
                                           "dormand-prince fit", "fehlberg fit", "cash-karp fit", "verner fit",
