@@ -81,7 +81,8 @@ $(BUILD)/bench_shadow: bench/shadow.c hrm.h
 	$(CC) -std=c99 -O2 $(WARN) -I. bench/shadow.c -o $@ -lm
 
 # silent answers and false alarms in random scenes (bench/sweep.c):
-# thick fog past a point light, and hrm_light_options' lights and spheres
+# thick fog past a point light, hrm_light_options' lights and spheres, and
+# an Li whose slope jumps
 $(BUILD)/bench_sweep: bench/sweep.c hrm.h
 	@mkdir -p $(BUILD)
 	$(CC) -std=c99 -O2 $(WARN) -I. bench/sweep.c -o $@ -lm

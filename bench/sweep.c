@@ -4,7 +4,7 @@
    within rtol (a false alarm). Part of `make bench` (build/bench_sweep);
    writes its table on stdout and to OUTDIR/sweep.md.
 
-   Two families of camera rays, each solved by every adaptive method with
+   Three families of camera rays, each solved by every adaptive method with
    its defaults, rtol log-uniform in 1e-5..1e-1 (float: 2e-4..1e-1), the
    fog given as constants and again as one sigma callback:
      fog     thick homogeneous fog (sigma_t 0.1..2, albedo 1/2) past one
@@ -21,6 +21,12 @@
              Reference: adaptive Simpson in long double between the jumps
              and kinks of Li, found by a scan of 4000 points of the lights'
              states (visible, in the cone, in the falloff) and bisection.
+     kinks   an Li whose slope jumps, as a host's shadow ray of a few fixed
+             steps makes it where its nodes cross a cloud's edge: Li =
+             e^-g(t) over [0, 1], g piecewise linear, 0 up to the first of
+             1-3 knots in [0.2, 0.5], its slope rising by 0..60 at each;
+             fog sigma_t 0.5..4.5 (albedo 0.9), no warp. Reference: the
+             closed form, piece by piece.
    usage: bench_sweep [outdir] [rays a family] */
 #define HRM_IMPLEMENTATION
 #include "hrm.h"
@@ -200,6 +206,76 @@ static void run_fog(int rays, int cb, tally t[NMETH])
             o.rtol = (hrm_real)rtol;
             hrm_equiangular_warp(org, dir, lp, &o.warp);
             st = hrm_solve(&md, 0, (hrm_real)t1, &o, &r);
+            count(&t[m], st, fabs((double)r.L[0] - ref) / ref, rtol, r.stats.evals);
+        }
+    }
+}
+
+/* ---- kinks: an Li whose slope jumps ---- */
+
+typedef struct kinks {
+    fogc fog; /* albedo 0.9 */
+    int nk;
+    double k[3], s[4]; /* knots (ascending), g's slope on each piece */
+} kinks;
+
+static double kinks_g(const kinks *q, double t)
+{
+    double g = 0;
+    int i;
+    for (i = 0; i < q->nk && t > q->k[i]; ++i) g += (q->s[i + 1] - q->s[i]) * (t - q->k[i]);
+    return g;
+}
+
+static void kinks_li(void *user, hrm_real t, hrm_real out[HRM_CHANNELS])
+{
+    double v = exp(-kinks_g((const kinks *)user, (double)t));
+    int c;
+    for (c = 0; c < HRM_CHANNELS; ++c) out[c] = (hrm_real)v;
+}
+
+/* sigma_s e^-(sigma_t t + g(t)) over [0, 1], g linear on each piece */
+static double kinks_ref(const kinks *q)
+{
+    double L = 0, a = 0;
+    int i;
+    for (i = 0; i <= q->nk; ++i) {
+        double b = i < q->nk ? q->k[i] : 1, r = q->fog.st + q->s[i];
+        L += q->fog.ss * exp(-q->fog.st * a - kinks_g(q, a)) * -expm1(-r * (b - a)) / r;
+        a = b;
+    }
+    return L;
+}
+
+static void run_kinks(int rays, int cb, tally t[NMETH])
+{
+    unsigned seed = 3;
+    int i, j, m;
+    for (i = 0; i < rays; ++i) {
+        kinks q;
+        double rtol, ref;
+        q.nk = 1 + (int)(3 * uni(&seed));
+        if (q.nk > 3) q.nk = 3;
+        q.fog.st = 0.5 + 4 * uni(&seed);
+        q.fog.ss = 0.9 * q.fog.st;
+        for (j = 0; j < q.nk; ++j) q.k[j] = 0.2 + 0.3 * uni(&seed);
+        for (j = 1; j < q.nk; ++j) { /* ascending */
+            double x = q.k[j];
+            int l = j;
+            for (; l > 0 && q.k[l - 1] > x; --l) q.k[l] = q.k[l - 1];
+            q.k[l] = x;
+        }
+        q.s[0] = 0;
+        for (j = 1; j <= q.nk; ++j) q.s[j] = q.s[j - 1] + 60 * uni(&seed);
+        rtol = pick_rtol(&seed);
+        ref = kinks_ref(&q);
+        for (m = 0; m < NMETH; ++m) {
+            hrm_medium md = fog_medium(&q, kinks_li, cb);
+            hrm_options o = hrm_default_options(methods[m]);
+            hrm_result r;
+            hrm_status st;
+            o.rtol = (hrm_real)rtol;
+            st = hrm_solve(&md, 0, 1, &o, &r);
             count(&t[m], st, fabs((double)r.L[0] - ref) / ref, rtol, r.stats.evals);
         }
     }
@@ -428,16 +504,18 @@ int main(int argc, char **argv)
     static const char *const form[2] = {"constants", "sigma callback"};
     const char *dir = argc > 1 ? argv[1] : "bench/out";
     int rays = argc > 2 ? atoi(argv[2]) : 4000, k, cb;
-    tally fog_t[2][NMETH], light_t[2][NMETH];
+    tally fog_t[2][NMETH], light_t[2][NMETH], kink_t[2][NMETH];
     long double *pts = (long double *)malloc(sizeof(long double) * (SCAN + 66));
     char path[1024], name[160];
     FILE *f;
     if (!pts || rays < 1) return 2;
     memset(fog_t, 0, sizeof fog_t);
     memset(light_t, 0, sizeof light_t);
+    memset(kink_t, 0, sizeof kink_t);
     for (cb = 0; cb < 2; ++cb) {
         run_fog(rays, cb, fog_t[cb]);
         run_lights(rays, cb, light_t[cb], pts);
+        run_kinks(rays, cb, kink_t[cb]);
     }
     free(pts);
     snprintf(path, sizeof path, "%s/sweep.md", dir);
@@ -458,6 +536,10 @@ int main(int argc, char **argv)
             snprintf(name, sizeof name, "lights: 1-3 point and spot lights, 0-2 spheres, hrm_light_options; %s",
                      form[cb]);
             report(out, name, rays, light_t[cb]);
+        }
+        for (cb = 0; cb < 2; ++cb) {
+            snprintf(name, sizeof name, "kinks: an Li whose slope jumps 1-3 times, no warp; %s", form[cb]);
+            report(out, name, rays, kink_t[cb]);
         }
     }
     if (!f) {
