@@ -122,6 +122,25 @@ static void count(tally *t, hrm_status st, double err, double rtol, long evals)
     }
 }
 
+/* Every method with its defaults at rtol over [0, t1] of the fog in user
+   (fog_medium, Li li, as constants or its callback cb), under warp where
+   given, each answer counted against ref. */
+static void solve_all(void *user, hrm_spectrum_fn li, int cb, const hrm_warp *warp, double t1, double rtol,
+                      double ref, tally t[NMETH])
+{
+    int m;
+    for (m = 0; m < NMETH; ++m) {
+        hrm_medium md = fog_medium(user, li, cb);
+        hrm_options o = hrm_default_options(methods[m]);
+        hrm_result r;
+        hrm_status st;
+        o.rtol = (hrm_real)rtol;
+        if (warp) o.warp = *warp;
+        st = hrm_solve(&md, 0, (hrm_real)t1, &o, &r);
+        count(&t[m], st, fabs((double)r.L[0] - ref) / ref, rtol, r.stats.evals);
+    }
+}
+
 /* ---- fog: one point light, its equiangular warp ---- */
 
 typedef struct fog {
@@ -183,11 +202,12 @@ static double fog_ref(const fog *f, double t1)
 static void run_fog(int rays, int cb, tally t[NMETH])
 {
     unsigned seed = 1;
-    int i, m;
+    int i;
     for (i = 0; i < rays; ++i) {
         fog f;
         double t1, rtol, ref;
         hrm_real org[3] = {0, 0, 0}, dir[3] = {1, 0, 0}, lp[3];
+        hrm_warp warp;
         f.delta = 0.5 + 4 * uni(&seed);
         f.D = pow(10, -2 + 2 * uni(&seed));
         f.fog.st = pow(10, -1 + 1.3 * uni(&seed));
@@ -198,16 +218,8 @@ static void run_fog(int rays, int cb, tally t[NMETH])
         lp[0] = (hrm_real)f.delta;
         lp[1] = 0;
         lp[2] = (hrm_real)f.D;
-        for (m = 0; m < NMETH; ++m) {
-            hrm_medium md = fog_medium(&f, fog_li, cb);
-            hrm_options o = hrm_default_options(methods[m]);
-            hrm_result r;
-            hrm_status st;
-            o.rtol = (hrm_real)rtol;
-            hrm_equiangular_warp(org, dir, lp, &o.warp);
-            st = hrm_solve(&md, 0, (hrm_real)t1, &o, &r);
-            count(&t[m], st, fabs((double)r.L[0] - ref) / ref, rtol, r.stats.evals);
-        }
+        hrm_equiangular_warp(org, dir, lp, &warp);
+        solve_all(&f, fog_li, cb, &warp, t1, rtol, ref, t);
     }
 }
 
@@ -250,7 +262,7 @@ static double kinks_ref(const kinks *q)
 static void run_kinks(int rays, int cb, tally t[NMETH])
 {
     unsigned seed = 3;
-    int i, j, m;
+    int i, j;
     for (i = 0; i < rays; ++i) {
         kinks q;
         double rtol, ref;
@@ -269,15 +281,7 @@ static void run_kinks(int rays, int cb, tally t[NMETH])
         for (j = 1; j <= q.nk; ++j) q.s[j] = q.s[j - 1] + 60 * uni(&seed);
         rtol = pick_rtol(&seed);
         ref = kinks_ref(&q);
-        for (m = 0; m < NMETH; ++m) {
-            hrm_medium md = fog_medium(&q, kinks_li, cb);
-            hrm_options o = hrm_default_options(methods[m]);
-            hrm_result r;
-            hrm_status st;
-            o.rtol = (hrm_real)rtol;
-            st = hrm_solve(&md, 0, 1, &o, &r);
-            count(&t[m], st, fabs((double)r.L[0] - ref) / ref, rtol, r.stats.evals);
-        }
+        solve_all(&q, kinks_li, cb, NULL, 1, rtol, ref, t);
     }
 }
 
