@@ -6141,8 +6141,11 @@ static HRM_DEVICE HRM__CALL void hrm__wf_rule(hrm__ctx *c, hrm__wf *w, hrm__iv *
    to the parent's |S2 - S1| (at least the square of the fall: a miss that
    cancels by chance is no evidence), where smaller than 1/5, is the
    halves' factor instead. The regime counts as reached when D fell (8
-   times) at this split and at the parent's own, and only for a half
-   whose samples look resolved (hrm__resolved5): until then S2 - S1 itself
+   times) at this split and at the parent's own (a fall short of 16 that
+   one half holds alone does not count: a kink's second-order fall, a mild
+   one 0.0003 before a sample 19 rtol off with HRM_OK at rtol 1e-5), and
+   only for a half whose samples look resolved (hrm__resolved5): until
+   then S2 - S1 itself
    is the estimate, since a boundary layer that a few samples cannot
    resolve (a thick medium), an oscillation they alias or a kink between
    them (falls of 8 by chance: make render's cloud, a pixel 5.5 rtol off
@@ -6168,6 +6171,11 @@ static HRM_DEVICE HRM__CALL void hrm__wf_trust(const hrm__ctx *c, const hrm__iv 
     for (j = 0; j < HRM__NY; ++j) {
         hrm_real q = cap, f = 1, rho = par->D[j] > 0 ? (l->D[j] + r->D[j]) / par->D[j] : 1, lo, fl;
         int fell = rho <= fall;
+        /* nested Simpson: a fall no better than 1/16 that one half holds
+           alone (90%) is a kink's second-order fall, not the asymptotic one */
+        if (square && fell && rho > fall / 2 &&
+            (l->D[j] > HRM__R(0.9) * (l->D[j] + r->D[j]) || r->D[j] > HRM__R(0.9) * (l->D[j] + r->D[j])))
+            fell = 0;
         l->fell[j] = r->fell[j] = (char)fell;
         if (!fell || !par->fell[j]) continue;
         if (j >= HRM__CH || !square) {

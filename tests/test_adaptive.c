@@ -1278,7 +1278,12 @@ static void ad_workspace(void)
    one kink inside an interval, whose halves' |K - G| fell 4 times twice
    by chance and were trusted (K15 27 and K7 3.4 rtol off with HRM_OK at
    rtol 1e-4, with and without a fit, before the halves kept a quarter of
-   the parent's miss, hrm__wf_trust). Scenes 6-9: a kink or two, Li
+   the parent's miss, hrm__wf_trust). Scenes 15-17, nested Simpson at
+   rtol 1e-4, 3e-5 and 1e-5: a mild kink (the slope 22% steeper) just
+   before a sample, the halves' S2 - S1 resolved and falling 8.3 times,
+   one half holding it all (3.4-19 rtol off with HRM_OK at rtol 1e-5, 6.4
+   in float at 3e-5, before such a fall had to reach 1/16:
+   hrm__wf_trust). Scenes 6-9: a kink or two, Li
    falling 20 times and more between neighbouring nodes of a pair's step
    (Dormand-Prince at rtol 1e-2: one or two steps over the ray, 11
    evaluations, 17-19 rtol off with HRM_OK before hrm__rk_tau_gap counted
@@ -1360,7 +1365,7 @@ static hrm_status ad_kink_solve(const ad_kink_scene *p, int v, double rtol, int 
 
 static void ad_kink(void)
 {
-    static const ad_kink_scene scenes[15] = {{{1.48, 0.9 * 1.48}, 1, {0.3776}, {0, 53.1}},
+    static const ad_kink_scene scenes[18] = {{{1.48, 0.9 * 1.48}, 1, {0.3776}, {0, 53.1}},
                                             {{1.158, 0.9 * 1.158}, 1, {0.3765}, {0, 52.9}},
                                             {{0.798, 0.9 * 0.798}, 1, {0.3777}, {0, 48.3}},
                                             {{3.341, 0.9 * 3.341}, 2, {0.2766, 0.4078}, {0, 10.7, 38.0}},
@@ -1374,23 +1379,27 @@ static void ad_kink(void)
                                             {{1.011, 0.9 * 1.011}, 1, {0.3289}, {0, 59.6}},
                                             {{0.849, 0.9 * 0.849}, 2, {0.4350, 0.4740}, {0, 57.0, 103.9}},
                                             {{0.957, 0.9 * 0.957}, 2, {0.3151, 0.4618}, {0, 43.2, 69.6}},
-                                            {{0.691, 0.9 * 0.691}, 1, {0.2932}, {0, 59.2}}};
+                                            {{0.691, 0.9 * 0.691}, 1, {0.2932}, {0, 59.2}},
+                                            {{2.146, 0.9 * 2.146}, 2, {0.2491, 0.2966}, {0, 28.9, 36.9}},
+                                            {{4.028, 0.9 * 4.028}, 3, {0.2358, 0.2502, 0.3465}, {0, 14.6, 50.6, 101.6}},
+                                            {{2.943, 0.9 * 2.943}, 2, {0.2286, 0.2502}, {0, 5.8, 45.7}}};
     static const char *const names[19] = {"nested-simpson", "gk K15", "gk K7", "gk local K15", "gk local K7",
                                           "dormand-prince", "fehlberg", "cash-karp", "verner", "bogacki-shampine",
                                           "dormand-prince fit", "fehlberg fit", "cash-karp fit", "verner fit",
                                           "bogacki-shampine fit", "gk K15 fit", "gk K7 fit", "gk local K15 fit",
                                           "gk local K7 fit"};
-    static const double rts[3] = {1e-2, 1e-3, 1e-4};
+    static const double rts[3] = {1e-2, 1e-3, 1e-4}, tight[3] = {1e-4, 3e-5, 1e-5};
     int i, v, k, silent = 0, other_silent = 0, other_runs = 0;
     double worst = 0;
-    for (i = 0; i < 15; ++i)
-        for (v = 0; v < 19; ++v)
+    for (i = 0; i < 18; ++i)
+        for (v = 0; v < (i < 15 ? 19 : 1); ++v)
             for (k = 0; k < 18; ++k) {
                 /* rtol k / 6, medium k / 3 % 2, warp k % 3 */
                 int ri = k / 6, med = k / 3 % 2, w = k % 3;
+                const double *rt = i < 15 ? rts : tight;
                 double e;
-                hrm_status st = ad_kink_solve(&scenes[i], v, rts[ri], med, w, &e);
-                CHECK(st >= 0, "kink %d, %s, rtol %g, %s, warp %d: status %d", i, names[v], rts[ri],
+                hrm_status st = ad_kink_solve(&scenes[i], v, rt[ri], med, w, &e);
+                CHECK(st >= 0, "kink %d, %s, rtol %g, %s, warp %d: status %d", i, names[v], rt[ri],
                       med ? "callbacks" : "constants", w, st);
                 if (v && !(v <= 4 || v >= 15 ? i == 5 || i == 14 : v <= 9 ? i >= 6 && i <= 9 : i >= 10 && i <= 13)) {
                     /* (not asserted) */
@@ -1401,7 +1410,7 @@ static void ad_kink(void)
                 if (st == HRM_OK && e > worst) worst = e;
                 if (st == HRM_OK) silent += e > 3;
                 CHECK(st != HRM_OK || e <= 3, "kink %d, %s, rtol %g, %s, warp %d: HRM_OK %.2f rtol off", i, names[v],
-                      rts[ri], med ? "callbacks" : "constants", w, e);
+                      rt[ri], med ? "callbacks" : "constants", w, e);
             }
     NOTE("an Li whose slope jumps: worst HRM_OK answer %.2f rtol, %d beyond 3 (asserted)", worst, silent);
     NOTE("Gauss-Kronrod and the pairs on the other scenes (not asserted): %d of %d solves silent", other_silent,
