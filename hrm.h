@@ -5471,12 +5471,17 @@ static HRM_DEVICE int hrm__coherent(hrm_real t0, hrm_real t1)
    S2 agreed by chance, and w / 12 times that prediction is their error's
    size instead. coherent: only where the third differences are coherent
    (hrm__coherent; noise is left to its own estimate). 0: no prediction. */
+static HRM_DEVICE hrm_real hrm__fourth_from(hrm_real d2, hrm_real t0, hrm_real t1, hrm_real w)
+{
+    hrm_real d3 = HRM_FABS(t0) > HRM_FABS(t1) ? HRM_FABS(t0) : HRM_FABS(t1);
+    return d2 > 0 ? HRM_FABS(w) / 12 * (d3 / d2) * d3 : 0;
+}
+
 static HRM_DEVICE hrm_real hrm__fourth_pred(const hrm_real (*f)[HRM__CH], int ch, hrm_real w, int coherent)
 {
-    hrm_real t0, t1, d3, d2 = hrm__diffs5(f, ch, &t0, &t1);
+    hrm_real t0, t1, d2 = hrm__diffs5(f, ch, &t0, &t1);
     if (coherent && !hrm__coherent(t0, t1)) return 0;
-    d3 = HRM_FABS(t0) > HRM_FABS(t1) ? HRM_FABS(t0) : HRM_FABS(t1);
-    return d2 > 0 ? HRM_FABS(w) / 12 * (d3 / d2) * d3 : 0;
+    return hrm__fourth_from(d2, t0, t1, w);
 }
 
 /* Whether five equally spaced samples f[0..4][ch] look resolved, so that
@@ -5488,10 +5493,10 @@ static HRM_DEVICE hrm_real hrm__fourth_pred(const hrm_real (*f)[HRM__CH], int ch
    nodes crossing a cloud's edge one by one: Li's slope 5 times steeper
    twice in 0.01), and so does a decay they do not resolve: a kink 0.003
    past a sample, the four after it on an exponential they cannot tell
-   from a smooth one. */
-static HRM_DEVICE int hrm__resolved5(const hrm_real (*f)[HRM__CH], int ch)
+   from a smooth one. d2, t0, t1: their differences (hrm__diffs5). */
+static HRM_DEVICE int hrm__resolved5(const hrm_real (*f)[HRM__CH], int ch, hrm_real d2, hrm_real t0, hrm_real t1)
 {
-    hrm_real t0, t1, d2 = hrm__diffs5(f, ch, &t0, &t1), lo = f[0][ch], hi = f[0][ch];
+    hrm_real lo = f[0][ch], hi = f[0][ch];
     int k;
     for (k = 1; k < 5; ++k) {
         lo = f[k][ch] < lo ? f[k][ch] : lo;
@@ -5532,9 +5537,10 @@ static HRM_DEVICE HRM__CALL void hrm__ns_five(const hrm__ctx *c, const hrm__pt *
         /* a thick medium past an equiangular light's foot: the warp
            squeezes its tail into the last samples, where S1 and S2 agreed
            to 1/20 of their error */
-        hrm_real pred = hrm__fourth_pred((const hrm_real(*)[HRM__CH])f, i, b->p - a->p, 0);
+        hrm_real t0, t1, d2 = hrm__diffs5((const hrm_real(*)[HRM__CH])f, i, &t0, &t1);
+        hrm_real pred = hrm__fourth_from(d2, t0, t1, b->p - a->p);
         if (pred > HRM_FABS(E[HRM__CH + i])) E[HRM__CH + i] = E[HRM__CH + i] < 0 ? -pred : pred;
-        if (resolved) resolved[i] = (char)hrm__resolved5((const hrm_real(*)[HRM__CH])f, i);
+        if (resolved) resolved[i] = (char)hrm__resolved5((const hrm_real(*)[HRM__CH])f, i, d2, t0, t1);
     }
     hrm__fill(M, HRM__CH, 0);
     if (c->mcheck) {
