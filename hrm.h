@@ -6151,13 +6151,12 @@ static HRM_DEVICE HRM__CALL void hrm__wf_rule(hrm__ctx *c, hrm__wf *w, hrm__iv *
    one half holds alone does not count: a kink's second-order fall, a mild
    one 0.0003 before a sample 19 rtol off with HRM_OK at rtol 1e-5), and
    only for a half whose samples look resolved (hrm__resolved5): until
-   then S2 - S1 itself
-   is the estimate, since a boundary layer that a few samples cannot
-   resolve (a thick medium), an oscillation they alias or a kink between
-   them (falls of 8 by chance: make render's cloud, a pixel 5.5 rtol off
-   with HRM_OK at rtol 1e-3) leaves the corrected sum as far off as S2
-   and S1 are apart. (Measured on the
-   bench's smooth scenes, rtol 1e-2..1e-10: worst HRM_OK run 0.64 rtol,
+   then S2 - S1 itself is the estimate, since a boundary layer that a few
+   samples cannot resolve (a thick medium), an oscillation they alias or
+   a kink between them (falls of 8 by chance: make render's cloud, a pixel
+   5.5 rtol off with HRM_OK at rtol 1e-3) leaves the corrected sum as far
+   off as S2 and S1 are apart. (Measured on the bench's smooth scenes,
+   rtol 1e-2..1e-10: worst HRM_OK run 0.64 rtol,
    median 0.009-0.022 (0.006 with the fall itself as the floor); one fall
    of 8 let smoke through at 5.7 rtol, a fall of 16 once made a budget of
    65 samples 100 times worse than a uniform Simpson rule on a smooth
