@@ -4631,68 +4631,53 @@ static HRM_DEVICE int hrm__step_edges(const hrm__ctx *c, hrm_real p, hrm_real p_
     return (p == c->pa || p == c->pb) | (p_end == c->pa || p_end == c->pb) << 1;
 }
 
-/* Two neighbouring nodes of a step across which the integrand falls by
-   more than 20 times, more than one optical depth apart, or both above 0
-   and the smaller not at a piece's end (edges, hrm__step_edges: there is
+/* One channel's gap between two neighbouring nodes of a rule (x, ascending,
+   in units of hl): where what the rule interpolates (r: L' itself, or with
+   an exponential fit, which follows the decay of Tr, the fitted values,
+   Tr's local exponential divided out) falls by more than factor times
+   between them, the polynomial through the nodes follows the fall no
+   better than a chord (65% over its integral at 20 times), and the
+   estimate, another such rule leaning on the same nodes, does not measure
+   it. Counted where both are above 0 and the smaller not at a piece's end
+   (edges, hrm__step_edges: bit 0 x[0]'s end, bit 1 x[n - 1]'s; there is
    the medium's edge, located to a bracket of 1/64 of tau's tolerance,
-   whose rise from 0 a polynomial follows; float's edge of a blob, 0.004
-   against 0.85, sent the pairs' steps down to round-off):
-   the polynomial through the nodes follows the exponential no better
-   than a chord there (65% over its integral at a factor 20), and the
-   embedded estimate, another such rule, does not measure it (an Li whose
-   slope jumps, a host's shadow ray of a few fixed steps crossing a
-   cloud's edge: Dormand-Prince 17-19 rtol off with HRM_OK at rtol 1e-2
-   in 161 of 3000 such scenes, 39 with both above 0 counted). Under the
-   equiangular warp, thick fog past the light puts its whole decay
-   e^-(sigma_t (t + r)) between a step's last two nodes (Verner: nodes at
-   t 3.4 and 11.6, tau 8.6 apart, estimate 0.36 rtol, error 5.1 rtol,
-   HRM_OK; 3 optical depths as the condition left a float ray 6.3 rtol
-   off, its shadow ray doubling the decay). (Under the distance warp the
-   integrand is flat in u however far apart in tau its nodes are: no
-   miss.) Half of what the gap can
-   hold, its width times the larger of its ends' values over 2, is the
-   step's miss (em, where larger): the step is refined until such a gap
-   holds no light that matters. tau[j], f[j]: tau and L' at the step's
-   distinct nodes in ascending order (ni). */
-static HRM_DEVICE void hrm__rk_tau_gap(const hrm__nodes_info *ni, const hrm_real *const *tau, const hrm_real *const *f,
-                                       hrm_real h, int edges, hrm_real em[HRM__CH])
+   whose rise from 0 a polynomial follows: float's edge of a blob, 0.004
+   against 0.85, sent the pairs' steps down to round-off), or, given tau
+   at the nodes (NULL: not), where they are more than one optical depth
+   apart. Half of what the gap can hold, its width times the larger of
+   L' (f) at its ends over 2, is a miss (*m, where larger; never scaled,
+   as the medium's): the interval is refined until such a gap holds no
+   light that matters. The cases that set it:
+   - the pairs (factor 20, tau given): an Li whose slope jumps, a host's
+     shadow ray of a few fixed steps crossing a cloud's edge,
+     Dormand-Prince 17-19 rtol off with HRM_OK at rtol 1e-2 in 161 of
+     3000 such scenes, 39 with both above 0 counted; under the equiangular
+     warp, thick fog past the light puts its whole decay
+     e^-(sigma_t (t + r)) between a step's last two nodes (Verner: nodes
+     at t 3.4 and 11.6, tau 8.6 apart, estimate 0.36 rtol, error 5.1 rtol,
+     HRM_OK; 3 optical depths as the condition left a float ray 6.3 rtol
+     off, its shadow ray doubling the decay). (Under the distance warp the
+     integrand is flat in u however far apart in tau its nodes are.)
+   - the fitted pairs (factor 8 on the fitted values): make render's
+     cloud, fitted Dormand-Prince at rtol 1e-2, one step of 0.1 over the
+     peak behind the cloud's edge, its fitted values 9 times apart between
+     the nodes at 0.3 and 0.8 of it, 16 rtol off with HRM_OK; an Li whose
+     slope jumps, 280 of 3000 such scenes silent at rtol 1e-2, 25 with
+     this.
+   - nested Simpson and Gauss-Kronrod (factor 8, edges 0): an Li with three
+     slope jumps on one K15 interval, |K - G| 1.1e-6, K 5.4e-3 off, 85
+     rtol with HRM_OK at rtol 1e-4. */
+static HRM_DEVICE void hrm__gap_miss(const hrm_real *x, const hrm_real *r, const hrm_real *f, const hrm_real *tau,
+                                     int n, hrm_real hl, hrm_real factor, int edges, hrm_real *m)
 {
-    int i, j;
-    for (i = 0; i < HRM__CH; ++i)
-        for (j = 0; j + 1 < ni->m; ++j) {
-            hrm_real hi = f[j][i] > f[j + 1][i] ? f[j][i] : f[j + 1][i], g;
-            hrm_real lo = f[j][i] > f[j + 1][i] ? f[j + 1][i] : f[j][i];
-            /* (the smaller at a piece's end: the medium's edge there) */
-            int at_edge = f[j][i] < f[j + 1][i] ? j == 0 && (edges & 1) : j + 2 == ni->m && (edges & 2);
-            if (!(hi > 0 && lo * 20 < hi && ((lo > 0 && !at_edge) || tau[j + 1][i] - tau[j][i] > 1))) continue;
-            g = (ni->c[j + 1] - ni->c[j]) * HRM_FABS(h) * hi / 2;
-            if (g > em[i]) em[i] = g;
-        }
-}
-
-/* With an exponential fit, which follows the decay of Tr: two
-   neighbouring nodes across which the fitted values g (Tr's local
-   exponential divided out) differ by more than 8 times, both above 0 and
-   the smaller not at a piece's end (hrm__rk_tau_gap), hold a gap that
-   neither rule of the pair resolves; half of what L' (f) holds over it is
-   the step's miss (em, where larger). (make render's cloud, fitted
-   Dormand-Prince at rtol 1e-2: one step of 0.1 over the peak behind the
-   cloud's edge, its fitted values 9 times apart between the nodes at 0.3
-   and 0.8 of it, 16 rtol off with HRM_OK; an Li whose slope jumps, 280
-   of 3000 such scenes silent at rtol 1e-2, 25 with this.) */
-static HRM_DEVICE void hrm__rk_fit_gap(const hrm__nodes_info *ni, const hrm_real (*g)[HRM__CH],
-                                       const hrm_real (*f)[HRM__CH], hrm_real h, int edges, hrm_real em[HRM__CH])
-{
-    int i, j;
-    for (i = 0; i < HRM__CH; ++i)
-        for (j = 0; j + 1 < ni->m; ++j) {
-            hrm_real hi = g[j][i] > g[j + 1][i] ? g[j][i] : g[j + 1][i];
-            hrm_real lo = g[j][i] > g[j + 1][i] ? g[j + 1][i] : g[j][i];
-            hrm_real fh = f[j][i] > f[j + 1][i] ? f[j][i] : f[j + 1][i];
-            hrm_real gap = (ni->c[j + 1] - ni->c[j]) * HRM_FABS(h) * fh / 2;
-            int at_edge = g[j][i] < g[j + 1][i] ? j == 0 && (edges & 1) : j + 2 == ni->m && (edges & 2);
-            if (lo > 0 && 8 * lo < hi && !at_edge && gap > em[i]) em[i] = gap;
-        }
+    int j;
+    for (j = 0; j + 1 < n; ++j) {
+        hrm_real hi = r[j] > r[j + 1] ? r[j] : r[j + 1], lo = r[j] > r[j + 1] ? r[j + 1] : r[j], gap;
+        int at_edge = r[j] < r[j + 1] ? j == 0 && (edges & 1) : j + 2 == n && (edges & 2);
+        if (!(hi > 0 && factor * lo < hi && ((lo > 0 && !at_edge) || (tau && tau[j + 1] - tau[j] > 1)))) continue;
+        gap = (x[j + 1] - x[j]) * HRM_FABS(hl) * (f[j] > f[j + 1] ? f[j] : f[j + 1]) / 2;
+        if (gap > *m) *m = gap;
+    }
 }
 
 /* The quadrature form of a step (see hrm__nodes_info): the distinct nodes
@@ -4727,22 +4712,29 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE int hrm__rk_quad(hrm__ctx *c, const hr
     if (err && c->mcheck && endj >= 0)
         hrm__medium_miss(c, qs, ni->bw, ni->m, h, start->tau, pn[endj].tau, start->off, pn[endj].off, em);
     if (err && !c->expo && endj >= 0 && ni->c[0] == 0) hrm__rk_exp_miss(ni, qs, endj, h, (const hrm_real(*)[HRM__CH])f, em);
-    if (err && !c->expo) {
-        const hrm_real *tq[HRM__MAX_STAGES] = {0}, *fq[HRM__MAX_STAGES] = {0};
-        for (j = 0; j < ni->m; ++j) {
-            tq[j] = qs[j]->tau;
-            fq[j] = f[j];
+    if (err && !c->expo)
+        for (i = 0; i < HRM__CH; ++i) {
+            hrm_real tc[HRM__MAX_STAGES], fc[HRM__MAX_STAGES];
+            for (j = 0; j < ni->m; ++j) {
+                tc[j] = qs[j]->tau[i];
+                fc[j] = f[j][i];
+            }
+            hrm__gap_miss(ni->c, fc, fc, tc, ni->m, h, 20, hrm__step_edges(c, p, p_end), &em[i]);
         }
-        hrm__rk_tau_gap(ni, tq, fq, h, hrm__step_edges(c, p, p_end), em);
-    }
     if (c->expo) {
         /* the nodes' polynomial against the exact local exponential; the
            embedded estimates are those of the fitted values g (what is
            interpolated) times the exponential's mass over the step */
         hrm_real out[HRM__CH], mass[HRM__CH], g[HRM__EFIT_MAX][HRM__CH], un[HRM__CH];
         hrm__efit_panel(c, &c->ef[0], pn, h / 2, out, mass, g, un);
-        if (err) hrm__rk_fit_gap(ni, (const hrm_real(*)[HRM__CH])g, (const hrm_real(*)[HRM__CH])f, h,
-                                 hrm__step_edges(c, p, p_end), em);
+        for (i = 0; err && i < HRM__CH; ++i) {
+            hrm_real gc[HRM__MAX_STAGES], fc[HRM__MAX_STAGES];
+            for (j = 0; j < ni->m; ++j) {
+                gc[j] = g[j][i];
+                fc[j] = f[j][i];
+            }
+            hrm__gap_miss(ni->c, gc, fc, NULL, ni->m, h, 8, hrm__step_edges(c, p, p_end), &em[i]);
+        }
         for (i = 0; i < HRM__CH; ++i) {
             hrm_real eacc = 0, d[HRM__MAX_STAGES];
             for (j = 0; j < ni->m; ++j) {
@@ -4849,17 +4841,16 @@ static HRM_DEVICE HRM__CALL int hrm__rk_stages_in(hrm__ctx *c, const hrm__tablea
         if (err) err[n] = h * eacc;
     }
     if (err && c->coupled && !c->rte) {
-        /* coupled tau: its stage values at the nodes (hrm__rk_tau_gap) */
-        const hrm_real *tq[HRM__MAX_STAGES] = {0}, *fq[HRM__MAX_STAGES] = {0};
-        hrm_real em[HRM__CH];
-        hrm__fill(em, HRM__CH, 0);
-        for (i = 0; i < ni->m; ++i) {
-            tq[i] = ts[ni->stage[i]];
-            fq[i] = k[ni->stage[i]] + HRM__CH;
+        /* coupled tau: its stage values at the nodes (hrm__gap_miss) */
+        for (n = 0; n < HRM__CH; ++n) {
+            hrm_real tc[HRM__MAX_STAGES], fc[HRM__MAX_STAGES], em = 0;
+            for (i = 0; i < ni->m; ++i) {
+                tc[i] = ts[ni->stage[i]][n];
+                fc[i] = k[ni->stage[i]][HRM__CH + n];
+            }
+            hrm__gap_miss(ni->c, fc, fc, tc, ni->m, h, 20, hrm__step_edges(c, p, p_end), &em);
+            if (em > HRM_FABS(err[HRM__CH + n])) err[HRM__CH + n] = err[HRM__CH + n] < 0 ? -em : em;
         }
-        hrm__rk_tau_gap(ni, tq, fq, h, hrm__step_edges(c, p, p_end), em);
-        for (n = 0; n < HRM__CH; ++n)
-            if (em[n] > HRM_FABS(err[HRM__CH + n])) err[HRM__CH + n] = err[HRM__CH + n] < 0 ? -em[n] : em[n];
     }
     if (err && both) {
         /* A second opinion on the step, which an embedded pair cannot
@@ -5417,28 +5408,6 @@ static HRM_DEVICE HRM__CALL void hrm__ns_rule(const hrm__ctx *c, const hrm__pt *
     }
 }
 
-/* Where two neighbouring nodes of a rule (at x[j] and x[j + 1] of [-1,
-   1], half width hl), both above 0, differ by more than 8 times, the
-   integrand falls faster than they resolve, and the two rules of an
-   estimate, which both lean on them, can agree by chance (an Li with
-   three slope jumps on one K15 interval: |K - G| 1.1e-6, K 5.4e-3 off,
-   85 rtol with HRM_OK at rtol 1e-4): half of what the larger holds over
-   their spacing is a miss (*m, where larger; never scaled, as the
-   medium's). f: L' at the nodes, ascending; r: what differs 8 times, f
-   itself, or with an exponential fit, which follows the decay of Tr, the
-   fitted values (Tr's local exponential divided out, as hrm__rk_fit_gap).
-   Nested Simpson (hrm__ns_five) and Gauss-Kronrod (hrm__gk). */
-static HRM_DEVICE void hrm__gap_miss(const hrm_real *x, const hrm_real *r, const hrm_real *f, int n, hrm_real hl,
-                                     hrm_real *m)
-{
-    int j;
-    for (j = 0; j + 1 < n; ++j) {
-        hrm_real hi = r[j] > r[j + 1] ? r[j] : r[j + 1], lo = r[j] > r[j + 1] ? r[j + 1] : r[j];
-        hrm_real gap = (x[j + 1] - x[j]) * HRM_FABS(hl) * (f[j] > f[j + 1] ? f[j] : f[j + 1]) / 2;
-        if (lo > 0 && 8 * lo < hi && gap > *m) *m = gap;
-    }
-}
-
 /* Five equally spaced samples f[0..4][ch]: their largest second
    difference (returned) and their two third differences. */
 static HRM_DEVICE hrm_real hrm__diffs5(const hrm_real (*f)[HRM__CH], int ch, hrm_real *t0, hrm_real *t1)
@@ -5463,6 +5432,14 @@ static HRM_DEVICE int hrm__coherent(hrm_real t0, hrm_real t1)
     return t0 * t1 > 0 && HRM_FABS(t0 - t1) <= HRM__R(0.25) * HRM_FABS(t0 + t1);
 }
 
+/* hrm__fourth_pred from the samples' differences (hrm__diffs5), without
+   the coherence test. */
+static HRM_DEVICE hrm_real hrm__fourth_from(hrm_real d2, hrm_real t0, hrm_real t1, hrm_real w)
+{
+    hrm_real d3 = HRM_FABS(t0) > HRM_FABS(t1) ? HRM_FABS(t0) : HRM_FABS(t1);
+    return d2 > 0 ? HRM_FABS(w) / 12 * (d3 / d2) * d3 : 0;
+}
+
 /* The fourth difference that five equally spaced samples f[0..4][ch]
    over a width w predict, as an error of Simpson's rule: S2 - S1 (on the
    halves, on the whole) is w / 12 times their fourth difference. Where
@@ -5471,12 +5448,6 @@ static HRM_DEVICE int hrm__coherent(hrm_real t0, hrm_real t1)
    S2 agreed by chance, and w / 12 times that prediction is their error's
    size instead. coherent: only where the third differences are coherent
    (hrm__coherent; noise is left to its own estimate). 0: no prediction. */
-static HRM_DEVICE hrm_real hrm__fourth_from(hrm_real d2, hrm_real t0, hrm_real t1, hrm_real w)
-{
-    hrm_real d3 = HRM_FABS(t0) > HRM_FABS(t1) ? HRM_FABS(t0) : HRM_FABS(t1);
-    return d2 > 0 ? HRM_FABS(w) / 12 * (d3 / d2) * d3 : 0;
-}
-
 static HRM_DEVICE hrm_real hrm__fourth_pred(const hrm_real (*f)[HRM__CH], int ch, hrm_real w, int coherent)
 {
     hrm_real t0, t1, d2 = hrm__diffs5(f, ch, &t0, &t1);
@@ -5561,7 +5532,7 @@ static HRM_DEVICE HRM__CALL void hrm__ns_five(const hrm__ctx *c, const hrm__pt *
         static const hrm_real x5[5] = {-1, HRM__R(-0.5), 0, HRM__R(0.5), 1};
         hrm_real fc[5];
         for (k = 0; k < 5; ++k) fc[k] = f[k][i];
-        hrm__gap_miss(x5, fc, fc, 5, (b->p - a->p) / 2, &M[i]);
+        hrm__gap_miss(x5, fc, fc, NULL, 5, (b->p - a->p) / 2, 8, 0, &M[i]);
     }
 }
 
@@ -5900,10 +5871,11 @@ static HRM_DEVICE HRM__CALL void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, co
         K[n] = rk * hl;
         if (is_tau) K[n] += c->sbar[ch] * (off_b - off_a);
         ek[n] = HRM_FABS((rk - rg) * hl);
-        if (!is_tau) {
+        if (!is_tau && !c->expo) hrm__gap_miss(R->x, f, f, NULL, N, hl, 8, 0, &io->M[ch]);
+        if (!is_tau && c->expo) {
             hrm_real gc[15];
-            for (j = 0; j < N; ++j) gc[j] = c->expo ? gfit[j][ch] : f[j];
-            hrm__gap_miss(R->x, gc, f, N, hl, &io->M[ch]);
+            for (j = 0; j < N; ++j) gc[j] = gfit[j][ch];
+            hrm__gap_miss(R->x, gc, f, NULL, N, hl, 8, 0, &io->M[ch]);
         }
         if (c->expo && !is_tau) {
             K[n] = eK[ch];

@@ -1286,11 +1286,11 @@ static void ad_workspace(void)
    hrm__wf_trust). Scenes 6-9: a kink or two, Li
    falling 20 times and more between neighbouring nodes of a pair's step
    (Dormand-Prince at rtol 1e-2: one or two steps over the ray, 11
-   evaluations, 17-19 rtol off with HRM_OK before hrm__rk_tau_gap counted
+   evaluations, 17-19 rtol off with HRM_OK before hrm__gap_miss counted
    such a gap): every pair asserted there. Scenes 10-13: the same for the
    pairs with an exponential fit, whose fitted values (Tr's decay divided
    out) fall 8 times between neighbouring nodes (Dormand-Prince 16-21
-   rtol off with HRM_OK, Cash-Karp 15, before hrm__rk_fit_gap): every
+   rtol off with HRM_OK, Cash-Karp 15, before hrm__gap_miss read them): every
    fitted pair asserted there. Not asserted, printed: the
    other forms' silent answers on the other scenes (Gauss-Kronrod's: a
    kink inside a resolved interval makes |K - G| fall 4 times a split,

@@ -1569,12 +1569,12 @@ static void wp_rte_vs_od(void)
    in bench/sweep.c): under the equiangular warp Verner's last step put
    the fog's decay between two nodes 8.6 optical depths apart and its
    embedded estimate missed it (5.1 rtol off, HRM_OK; 2 checks failing on
-   the header before hrm__rk_tau_gap). Every
+   the header before hrm__gap_miss). Every
    adaptive method, the medium as constants and as sigma callbacks,
    without a warp, with the distance warp and the equiangular one: HRM_OK
    means within 3 rtol (the manual's promise); with callbacks also with
    tau coupled (the pairs' stage values of tau: the fifth scene failed
-   there too until hrm__rk_tau_gap read them). The reference: 8-point
+   there too until hrm__gap_miss read them). The reference: 8-point
    Gauss-Legendre on panels graded towards the foot (D 2^k, k = -4..16),
    64 a piece, within 1e-11 of 32 a piece (checked). */
 typedef struct wp_tt_sc {
