@@ -4692,7 +4692,7 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE int hrm__rk_quad(hrm__ctx *c, const hr
                                     start's copy too: the fit's array) */
     const hrm__pt *qs[HRM__MAX_STAGES];
     hrm_real f[HRM__MAX_STAGES][HRM__CH], h = p_end - p, em[HRM__CH];
-    int i, j, endj = -1;
+    int i, j, endj = -1, edges;
     if (c->expo) memset(pn, 0, sizeof pn);
     for (j = 0; j < ni->m; ++j) {
         const hrm__pt *q = start;
@@ -4712,6 +4712,7 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE int hrm__rk_quad(hrm__ctx *c, const hr
     if (err && c->mcheck && endj >= 0)
         hrm__medium_miss(c, qs, ni->bw, ni->m, h, start->tau, pn[endj].tau, start->off, pn[endj].off, em);
     if (err && !c->expo && endj >= 0 && ni->c[0] == 0) hrm__rk_exp_miss(ni, qs, endj, h, (const hrm_real(*)[HRM__CH])f, em);
+    edges = hrm__step_edges(c, p, p_end);
     if (err && !c->expo)
         for (i = 0; i < HRM__CH; ++i) {
             hrm_real tc[HRM__MAX_STAGES], fc[HRM__MAX_STAGES];
@@ -4719,7 +4720,7 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE int hrm__rk_quad(hrm__ctx *c, const hr
                 tc[j] = qs[j]->tau[i];
                 fc[j] = f[j][i];
             }
-            hrm__gap_miss(ni->c, fc, fc, tc, ni->m, h, 20, hrm__step_edges(c, p, p_end), &em[i]);
+            hrm__gap_miss(ni->c, fc, fc, tc, ni->m, h, 20, edges, &em[i]);
         }
     if (c->expo) {
         /* the nodes' polynomial against the exact local exponential; the
@@ -4733,7 +4734,7 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE int hrm__rk_quad(hrm__ctx *c, const hr
                 gc[j] = g[j][i];
                 fc[j] = f[j][i];
             }
-            hrm__gap_miss(ni->c, gc, fc, NULL, ni->m, h, 8, hrm__step_edges(c, p, p_end), &em[i]);
+            hrm__gap_miss(ni->c, gc, fc, NULL, ni->m, h, 8, edges, &em[i]);
         }
         for (i = 0; i < HRM__CH; ++i) {
             hrm_real eacc = 0, d[HRM__MAX_STAGES];
@@ -4842,13 +4843,14 @@ static HRM_DEVICE HRM__CALL int hrm__rk_stages_in(hrm__ctx *c, const hrm__tablea
     }
     if (err && c->coupled && !c->rte) {
         /* coupled tau: its stage values at the nodes (hrm__gap_miss) */
+        int edges = hrm__step_edges(c, p, p_end);
         for (n = 0; n < HRM__CH; ++n) {
             hrm_real tc[HRM__MAX_STAGES], fc[HRM__MAX_STAGES], em = 0;
             for (i = 0; i < ni->m; ++i) {
                 tc[i] = ts[ni->stage[i]][n];
                 fc[i] = k[ni->stage[i]][HRM__CH + n];
             }
-            hrm__gap_miss(ni->c, fc, fc, tc, ni->m, h, 20, hrm__step_edges(c, p, p_end), &em);
+            hrm__gap_miss(ni->c, fc, fc, tc, ni->m, h, 20, edges, &em);
             if (em > HRM_FABS(err[HRM__CH + n])) err[HRM__CH + n] = err[HRM__CH + n] < 0 ? -em : em;
         }
     }
