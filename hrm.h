@@ -4715,7 +4715,7 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE int hrm__rk_quad(hrm__ctx *c, const hr
     edges = hrm__step_edges(c, p, p_end);
     if (err && !c->expo)
         for (i = 0; i < HRM__CH; ++i) {
-            hrm_real tc[HRM__MAX_STAGES], fc[HRM__MAX_STAGES];
+            hrm_real tc[HRM__MAX_STAGES] = {0}, fc[HRM__MAX_STAGES] = {0};
             for (j = 0; j < ni->m; ++j) {
                 tc[j] = qs[j]->tau[i];
                 fc[j] = f[j][i];
@@ -4729,7 +4729,7 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE int hrm__rk_quad(hrm__ctx *c, const hr
         hrm_real out[HRM__CH], mass[HRM__CH], g[HRM__EFIT_MAX][HRM__CH], un[HRM__CH];
         hrm__efit_panel(c, &c->ef[0], pn, h / 2, out, mass, g, un);
         for (i = 0; err && i < HRM__CH; ++i) {
-            hrm_real gc[HRM__MAX_STAGES], fc[HRM__MAX_STAGES];
+            hrm_real gc[HRM__MAX_STAGES] = {0}, fc[HRM__MAX_STAGES] = {0};
             for (j = 0; j < ni->m; ++j) {
                 gc[j] = g[j][i];
                 fc[j] = f[j][i];
@@ -4845,7 +4845,7 @@ static HRM_DEVICE HRM__CALL int hrm__rk_stages_in(hrm__ctx *c, const hrm__tablea
         /* coupled tau: its stage values at the nodes (hrm__gap_miss) */
         int edges = hrm__step_edges(c, p, p_end);
         for (n = 0; n < HRM__CH; ++n) {
-            hrm_real tc[HRM__MAX_STAGES], fc[HRM__MAX_STAGES], em = 0;
+            hrm_real tc[HRM__MAX_STAGES] = {0}, fc[HRM__MAX_STAGES] = {0}, em = 0;
             for (i = 0; i < ni->m; ++i) {
                 tc[i] = ts[ni->stage[i]][n];
                 fc[i] = k[ni->stage[i]][HRM__CH + n];
