@@ -340,26 +340,26 @@
    Gauss-Kronrod give a step atol f + rtol max(|dL|, f |L|), f its share.
    Each estimate is of the value returned (nested Simpson's |S2 - S1|, at
    least the 4th difference its 3rd and 2nd predict; Gauss-Kronrod's |K -
-   G|; each scaled once splits show its rate and samples look resolved;
-   the pairs' embedded estimate and stage values' Newton series, the
-   larger), raised where nodes miss the layer's 1 - Tr (decoupled tau),
-   a pair's neighbours lie 20 times apart (both > 0, or > 1 optical depth),
-   others' 8 times (no fit: half the gap). An interval whose error does
-   not shrink may take rtol/16 of |L|, 16 times a call. Worst HRM_OK run on
-   the smooth scenes: 2.3 rtol, every default (bench/results/summary.md).
-   Missed tolerances return the best estimate and a warning: H_MIN (a step
-   at h_min failed), MAX_EVALS (stats.evals <= max_evals, a user warp's
-   calls 4 max_evals), STORAGE (a finish HRM_MAX_DEPTH deep), ROUNDOFF
-   (bisection no longer helps, or t cannot resolve a step), TOLERANCE (the
-   accepted estimates exceed atol + 3 rtol |L|, also after a pass at the
-   scale found), RTOL_CLIPPED (rtol < 100 eps, raised); a piece's (between
-   breakpoints) H_MIN or TOLERANCE only where all exceed atol + rtol |L|.
-   result.error: their sum per channel, any status (-1: fixed steps). Every
-   L (but the RTE form's fixed steps, Le per length) is in [0, the largest
-   S/sigma_t sampled times 1 - Tr], cuts in result.error (fixed steps to 2x,
-   Monte Carlo any; past: bound, TOLERANCE). Not seen: a feature between a
-   step's samples (a light needs its warp, an occluder its breakpoints).
-   Munoz's, Gonterman's controllers (eq. 12, 3.4) unverified.
+   G|, where its nodes' top Legendre coefficients stop falling (a kink) at
+   least half them; each scaled once splits show its rate and samples look
+   resolved, but a kink's; the pairs' embedded estimate and stage values'
+   Newton series, the larger), raised where nodes miss the layer's 1 - Tr
+   (decoupled tau), a pair's neighbours lie 20 times apart (both > 0, or >
+   1 optical depth), others' 8 times (no fit: half the gap). An interval
+   whose error does not shrink may take rtol/16 of |L|, 16 times a call.
+   Worst HRM_OK run, smooth scenes: 2.3 rtol. Missed tolerances return the
+   best estimate and a warning: H_MIN (a step at h_min failed), MAX_EVALS
+   (stats.evals <= max_evals, a user warp's calls 4 max_evals), STORAGE (a
+   finish HRM_MAX_DEPTH deep), ROUNDOFF (bisection no longer helps, or t
+   cannot resolve a step), TOLERANCE (the accepted estimates exceed atol + 3
+   rtol |L|, also after a pass at the scale found), RTOL_CLIPPED (rtol < 100
+   eps, raised); a piece's (between breakpoints) H_MIN or TOLERANCE only where
+   all exceed atol + rtol |L|. result.error: their sum per channel, any status
+   (-1: fixed steps). Every L (but the RTE form's fixed steps, Le per length)
+   is in [0, the largest S/sigma_t sampled times 1 - Tr], cuts in result.error
+   (fixed steps to 2x, Monte Carlo any; past: bound, TOLERANCE). Not seen: a
+   feature between a step's samples (a light needs its warp, an occluder its
+   breakpoints). Munoz's, Gonterman's controllers (eq. 12, 3.4) unverified.
 
    ==========================================================================
    IMPORTANCE SAMPLING (options.warp; Munoz 2014 s.5)
@@ -1320,6 +1320,25 @@ static HRM__TABLE const hrm_real hrm__k7_tau[7 * 7] = {
     HRM__R(0.0565065804578175323317002278422),
 };
 
+/* The Legendre coefficients of the polynomial through a pair's nodes:
+   row k of the inverse of V[j][k] = P_k(x_j), for k = n - 1, n - 2 (the
+   highest two) and n - 5, n - 6 (K15; K7, of 7 nodes: n - 3, n - 4), so
+   that c_k = sum_j row[j] f(x_j)
+   (computed from the nodes above in 50-digit arithmetic; test_tables
+   checks them against P_k at the nodes). */
+static HRM__TABLE const hrm_real hrm__gk_leg[4 * 15] = {
+    HRM__R(0.0505052523670278229946), HRM__R(-0.146201951379381873356), HRM__R(0.230755247928894226339), HRM__R(-0.306202939037978631794), HRM__R(0.372160738193176938474), HRM__R(-0.421651768144555709568), HRM__R(0.450176248927154346585), HRM__R(-0.459081657708674239350), HRM__R(0.450176248927154346585), HRM__R(-0.421651768144555709568), HRM__R(0.372160738193176938474), HRM__R(-0.306202939037978631794), HRM__R(0.230755247928894226339), HRM__R(-0.146201951379381873356), HRM__R(0.0505052523670278229946),
+    HRM__R(-0.0965707143346964659757), HRM__R(0.267611327075807899989), HRM__R(-0.384888865700437042525), HRM__R(0.437899554807784831224), HRM__R(-0.420657412237561756348), HRM__R(0.330027413794407741529), HRM__R(-0.180398285284409871493), 0, HRM__R(0.180398285284409871493), HRM__R(-0.330027413794407741529), HRM__R(0.420657412237561756348), HRM__R(-0.437899554807784831224), HRM__R(0.384888865700437042525), HRM__R(-0.267611327075807899989), HRM__R(0.0965707143346964659757),
+    HRM__R(0.138729956396644884713), HRM__R(-0.235232635615776707345), HRM__R(-0.00454163115413780707059), HRM__R(0.363653242793321034349), HRM__R(-0.473150543882563846277), HRM__R(0.172624106953099187664), HRM__R(0.302462337722854959012), HRM__R(-0.529089666426883410093), HRM__R(0.302462337722854959012), HRM__R(0.172624106953099187664), HRM__R(-0.473150543882563846277), HRM__R(0.363653242793321034349), HRM__R(-0.00454163115413780707059), HRM__R(-0.235232635615776707345), HRM__R(0.138729956396644884713),
+    HRM__R(-0.141673669082500858888), HRM__R(0.166256623422168808444), HRM__R(0.181442566122020068672), HRM__R(-0.419714075932214606837), HRM__R(0.147129786215698378210), HRM__R(0.362454172761982560613), HRM__R(-0.463727794251539658791), 0, HRM__R(0.463727794251539658791), HRM__R(-0.362454172761982560613), HRM__R(-0.147129786215698378210), HRM__R(0.419714075932214606837), HRM__R(-0.181442566122020068672), HRM__R(-0.166256623422168808444), HRM__R(0.141673669082500858888),
+};
+static HRM__TABLE const hrm_real hrm__k7_leg[4 * 7] = {
+    HRM__R(0.158570039434041310900), HRM__R(-0.434950705586700173980), HRM__R(0.608177901175700337735), HRM__R(-0.663594470046082949309), HRM__R(0.608177901175700337735), HRM__R(-0.434950705586700173980), HRM__R(0.158570039434041310900),
+    HRM__R(-0.279226086984319099777), HRM__R(0.617670841024766852943), HRM__R(-0.484178662140076336046), 0, HRM__R(0.484178662140076336046), HRM__R(-0.617670841024766852943), HRM__R(0.279226086984319099777),
+    HRM__R(0.300922614828066390215), HRM__R(-0.362458921322250144984), HRM__R(-0.318924522998903802835), HRM__R(0.760921658986175115207), HRM__R(-0.318924522998903802835), HRM__R(-0.362458921322250144984), HRM__R(0.300922614828066390215),
+    HRM__R(-0.283697042072339787012), 0, HRM__R(0.627501333706372321802), 0, HRM__R(-0.627501333706372321802), 0, HRM__R(0.283697042072339787012),
+};
+
 /* A Gauss-Kronrod pair: n nodes ascending, Kronrod and Gauss weights,
    the tau matrix, the Kronrod rule's exact degree, and a bound below the
    gap between its nodes and an ancestor's (hrm__gk_resolved). */
@@ -1327,9 +1346,10 @@ typedef struct hrm__gk_pair {
     int n, degree;
     const hrm_real *x, *wk, *wg, *tau;
     hrm_real gap; /* below the closest node of an ancestor, per width */
+    const hrm_real *leg; /* four rows of Legendre coefficients (hrm__gk_leg) */
 } hrm__gk_pair;
-static HRM__TABLE const hrm__gk_pair hrm__k15 = {15, 22, hrm__gk_x, hrm__gk_wk, hrm__gk_wg, hrm__gk_tau, HRM__R(1e-4)};
-static HRM__TABLE const hrm__gk_pair hrm__k7 = {7, 11, hrm__k7_x, hrm__k7_wk, hrm__k7_wg, hrm__k7_tau, HRM__R(1e-2)};
+static HRM__TABLE const hrm__gk_pair hrm__k15 = {15, 22, hrm__gk_x, hrm__gk_wk, hrm__gk_wg, hrm__gk_tau, HRM__R(1e-4), hrm__gk_leg};
+static HRM__TABLE const hrm__gk_pair hrm__k7 = {7, 11, hrm__k7_x, hrm__k7_wk, hrm__k7_wg, hrm__k7_tau, HRM__R(1e-2), hrm__k7_leg};
 
 /* The Chebyshev polynomials at the degree-16 Lobatto points, ascending in t:
    T_k(-cos(j pi / 16)) = (-1)^k cos(j k pi / 16), row k, column j (the
@@ -5775,6 +5795,38 @@ static HRM_DEVICE HRM__CALL hrm_real hrm__gk_warp_miss(hrm__ctx *c, const hrm__g
     return fl > 0 ? fl : 0;
 }
 
+/* A kink between the nodes (an Li whose slope jumps: a host's shadow ray
+   of a few fixed steps whose nodes cross a cloud's edge): K and G can
+   agree by chance (Li = e^-g, g's slope rising by 9.3 at 0.36 of the one
+   interval over the ray: |K - G| 1e-5 of K, K 4.4e-3 off, HRM_OK 186 rtol
+   off at rtol 2.3e-5), but the polynomial through the nodes (f, over
+   [mid - hl, mid + hl]) shows it: its Legendre coefficients stop falling,
+   the highest two (c_n-1, c_n-2) more than 1/20 of the larger of
+   c_n-5, c_n-6 (K7: c_n-3, c_n-4), where a smooth integrand's fall
+   geometrically. Those
+   two then bound K's error: over a random kink (slope rising 0..60 at
+   0.02..0.98 of the interval), K's error was at most 0.89 of hl times
+   the larger (0.3 typically). Returns hl times the larger of the highest
+   two, where they do not fall, else 0. hrm__gk takes half of it, or
+   |K - G| where larger, as a miss, which the halves' trust never scales
+   down (trusted, a kink's estimate fell 32 times in one split and was
+   believed: 37 rtol off; K7 under a warp, 8 rtol). bench/sweep.c's
+   kinks: 64 of 4000 solves silent (worst 186 rtol) -> 3 (5.0);
+   evaluations there +11%, fog and lights +4% and +6%. */
+static HRM_DEVICE hrm_real hrm__gk_tail(const hrm__gk_pair *R, const hrm_real *f, hrm_real hl)
+{
+    hrm_real co[4];
+    int r, j, N = R->n;
+    for (r = 0; r < 4; ++r) {
+        co[r] = 0;
+        for (j = 0; j < N; ++j) co[r] += R->leg[r * N + j] * f[j];
+        co[r] = HRM_FABS(co[r]);
+    }
+    co[0] = co[0] > co[1] ? co[0] : co[1];
+    co[2] = co[2] > co[3] ? co[2] : co[3];
+    return co[0] > co[2] / 20 ? co[0] * HRM_FABS(hl) : 0;
+}
+
 /* The Kronrod rule (c->gk) over [a, b] of y = (tau, L) given tau at a
    (tau_a; ignored when Tr at the nodes is known). K receives the
    increments; ek |K - G| (Munoz's estimate, G's error), at least 50
@@ -5873,6 +5925,14 @@ static HRM_DEVICE HRM__CALL void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, co
         K[n] = rk * hl;
         if (is_tau) K[n] += c->sbar[ch] * (off_b - off_a);
         ek[n] = HRM_FABS((rk - rg) * hl);
+        if (!is_tau && !c->expo) {
+            /* a kink between the nodes (hrm__gk_tail): half the
+               coefficients that did not fall, or |K - G| where larger, as
+               a miss, which no trust in the halves scales down */
+            hrm_real tl = hrm__gk_tail(R, f, hl) / 2;
+            if (tl > 0 && ek[n] > tl) tl = ek[n];
+            if (tl > io->M[ch]) io->M[ch] = tl;
+        }
         if (!is_tau && !c->expo) hrm__gap_miss(R->x, f, f, NULL, N, hl, 8, 0, &io->M[ch]);
         if (!is_tau && c->expo) {
             hrm_real gc[15];

@@ -231,6 +231,40 @@ static void ad_gk_tables(void)
         for (l = 0; l < 15; ++l) d += fabs((double)hrm__gk_tau[14 * 15 + l] - wk[l]);
         CHECK(d > 1e-3, "the last tau row differs from the K15 weights (sum |diff| = %g)", d);
     }
+    /* The Legendre rows (hrm__gk_leg, hrm__k7_leg: the kink test,
+       hrm__gk_tail): applied to P_m at a pair's nodes, row r gives 1 for
+       its degree and 0 for every other m < n (the interpolant of P_m is
+       P_m). Bound: double 1e-13 (entries to 21 digits, n terms of
+       magnitude <= 1); float: n terms each rounded to FLT_EPSILON, node
+       errors magnified n times: 4 n n FLT_EPSILON. */
+    {
+        static const int deg15[4] = {14, 13, 10, 9}, deg7[4] = {6, 5, 4, 3};
+        const hrm__gk_pair *pr[2] = {&hrm__k15, &hrm__k7};
+        int p, r, m;
+        double worst_leg = 0;
+        for (p = 0; p < 2; ++p) {
+            int n = pr[p]->n;
+            for (r = 0; r < 4; ++r)
+                for (m = 0; m < n; ++m) {
+                    double v = 0;
+                    for (l = 0; l < n; ++l) {
+                        double xl = (double)pr[p]->x[l], p0 = 1, p1 = xl, pm = m == 0 ? 1 : xl;
+                        int q;
+                        for (q = 1; q < m; ++q) {
+                            pm = ((2 * q + 1) * xl * p1 - q * p0) / (q + 1);
+                            p0 = p1;
+                            p1 = pm;
+                        }
+                        v += (double)pr[p]->leg[r * n + l] * pm;
+                    }
+                    v = fabs(v - (m == (p ? deg7 : deg15)[r] ? 1 : 0));
+                    CHECK(v <= (real_is_float() ? 4.0 * n * n * (double)FLT_EPSILON : 1e-13),
+                          "%s Legendre row %d on P_%d: off by %.3g", p ? "K7" : "K15", r, m, v);
+                    if (v > worst_leg) worst_leg = v;
+                }
+        }
+        NOTE("Legendre rows of K15 and K7: worst %.3g", worst_leg);
+    }
 }
 
 /* ======================================================================== */
