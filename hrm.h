@@ -7314,10 +7314,15 @@ static HRM_DEVICE HRM__CALL int hrm__locate_jump(hrm__ctx *c, hrm_real pl, hrm_r
         if (!(pm > pl && pm < pr)) break;
         if (or_ - ol <= 4 * HRM__EPS * (HRM_FABS(c->t0 + ol) + HRM_FABS(c->t0 + or_)) / 2) break;
         hrm__source_at(c, pm, Sm, &om);
-        for (i = 0; i < HRM__CH; ++i) {
+        for (i = 0, big = 0; i < HRM__CH; ++i) {
             dl += HRM_FABS(Sm[i] - Sl[i]);
             dr += HRM_FABS(Sr[i] - Sm[i]);
+            big += HRM_FABS(Sl[i]) > HRM_FABS(Sr[i]) ? HRM_FABS(Sl[i]) : HRM_FABS(Sr[i]);
         }
+        /* no change left to follow (the source constant across: a thick
+           homogeneous ray's interval that refines slowly for Tr's sake,
+           50 evaluations of bisection for nothing) */
+        if (!(dl + dr > HRM__R(0.01) * big)) return 0;
         smooth = (dl > dr ? dl : dr) < HRM__R(0.75) * (dl + dr) ? smooth + 1 : 0;
         if (smooth >= 3) return 0;
         if (dl > dr) {
@@ -7330,7 +7335,7 @@ static HRM_DEVICE HRM__CALL int hrm__locate_jump(hrm__ctx *c, hrm_real pl, hrm_r
             memcpy(Sl, Sm, sizeof Sm);
         }
     }
-    for (i = 0; i < HRM__CH; ++i) {
+    for (i = 0, big = 0; i < HRM__CH; ++i) {
         d += HRM_FABS(Sr[i] - Sl[i]);
         big += HRM_FABS(Sl[i]) > HRM_FABS(Sr[i]) ? HRM_FABS(Sl[i]) : HRM_FABS(Sr[i]);
     }

@@ -1001,6 +1001,36 @@ static void br_jumps(void)
                           hrm_method_name(ms[mi]), cb ? "sigma callbacks" : "constants", (double)op.rtol,
                           with.stats.evals, without.stats.evals);
                 }
+            /* a thick homogeneous ray (sigma_t 100 over 10, Li 1: a
+               boundary layer at t0 that refines slowly for Tr's sake): the
+               source is constant, and the bisection ends at its first
+               midpoint (before, it ran its 50 halvings: Gauss-Kronrod 249
+               evaluations at every rtol against 197 without the search,
+               nested Simpson 138 against 89 at rtol 1e-6). L in closed
+               form: sigma_s / sigma_t (1 - e^-1000). */
+            for (k = 0; k < 2; ++k) {
+                hrm_medium mt;
+                hrm_options op = hrm_default_options(ms[mi]);
+                hrm_result with, without;
+                int c;
+                memset(&mt, 0, sizeof mt);
+                mt.Li = br_one;
+                mt.flags = HRM_MEDIUM_HOMOGENEOUS;
+                for (c = 0; c < NCH; ++c) {
+                    mt.const_sigma_a[c] = (hrm_real)50;
+                    mt.const_sigma_s[c] = (hrm_real)50;
+                }
+                op.rtol = (hrm_real)(k ? (real_is_float() ? 1e-4 : 1e-6) : 1e-2);
+                CHECK_INT(hrm_solve(&mt, 0, 10, &op, &with), HRM_OK, "%s, thick ray, rtol %g: status",
+                          hrm_method_name(ms[mi]), (double)op.rtol);
+                CHECK_REL(with.L[0], 0.5, 3 * (double)op.rtol, "%s, thick ray, rtol %g: L within 3 rtol",
+                          hrm_method_name(ms[mi]), (double)op.rtol);
+                op.find_jumps = -1;
+                hrm_solve(&mt, 0, 10, &op, &without);
+                CHECK(with.stats.evals <= without.stats.evals + 2,
+                      "%s, thick ray, rtol %g: the search costs %ld - %ld evaluations (its first midpoint)",
+                      hrm_method_name(ms[mi]), (double)op.rtol, with.stats.evals, without.stats.evals);
+            }
         }
         s.lo = 3.3;
         s.hi = 6.1;
