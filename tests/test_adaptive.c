@@ -1296,11 +1296,12 @@ static void ad_workspace(void)
    other forms' silent answers on the other scenes (Gauss-Kronrod's: a
    kink inside a resolved interval makes |K - G| fall 4 times a split,
    second order, which its trust in the halves, a fall of 4 twice, can
-   take for the asymptotic rate). Gauss-Kronrod without a fit is asserted
+   take for the asymptotic rate). Gauss-Kronrod's eight forms are asserted
    on every scene since its nodes' Legendre coefficients that stop
    falling count as a miss (hrm__gk_tail; before it, 34 of the asserted
-   solves silent, the worst 436 rtol off, on scene 18 and elsewhere);
-   scene 18, nested Simpson and those four at rtol 1e-4, 2.34e-5 and
+   solves without a fit silent, the worst 436 rtol off, on scene 18 and
+   elsewhere; with a fit, 4 on scenes 4 and 8, 3.4 and 5.8 rtol); scene
+   18, nested Simpson and those eight at rtol 1e-4, 2.34e-5 and
    1e-5: the worst of bench/sweep.c's kinks for them, one K15 over the
    ray accepted with |K - G| 1e-5 of K, 186 rtol off with HRM_OK at rtol
    2.34e-5 (K7 under the equiangular warp: 8 rtol off before a flagged
@@ -1404,7 +1405,7 @@ static void ad_kink(void)
     int i, v, k, silent = 0, other_silent = 0, other_runs = 0, runs = 0, ok = 0, within = 0, fc_silent = 0;
     double worst = 0;
     for (i = 0; i < 19; ++i)
-        for (v = 0; v < (i < 15 ? 19 : i < 18 ? 1 : 5); ++v)
+        for (v = 0; v < (i < 15 || i == 18 ? 19 : 1); ++v)
             for (k = 0; k < 27; ++k) {
                 /* rtol k / 9, medium k / 3 % 3, warp k % 3 */
                 int ri = k / 9, med = k / 3 % 3, w = k % 3;
@@ -1412,10 +1413,11 @@ static void ad_kink(void)
                 double e;
                 hrm_status st;
                 if (med == 2 && v >= 10) continue; /* a fit takes tau decoupled (HRM_ERR_BAD_OPTION) */
+                if (i == 18 && v >= 5 && v <= 14) continue; /* Gauss-Kronrod's scene */
                 st = ad_kink_solve(&scenes[i], v, rt[ri], med, w, &e);
                 CHECK(st >= 0, "kink %d, %s, rtol %g, %s, warp %d: status %d", i, names[v], rt[ri], meds[med],
                       w, st);
-                if (v > 4 && !(v >= 15 ? i == 5 || i == 14 : v <= 9 ? i >= 6 && i <= 9 : i >= 10 && i <= 13)) {
+                if (v >= 5 && v <= 14 && !(v <= 9 ? i >= 6 && i <= 9 : i >= 10 && i <= 13)) {
                     /* (not asserted) */
                     other_runs++;
                     other_silent += st == HRM_OK && e > 3;
@@ -1441,10 +1443,10 @@ static void ad_kink(void)
          "%d warnings within rtol", worst, silent, ok, runs, within);
     NOTE("float with tau coupled (not asserted): %d solves silent", fc_silent);
     /* A test of HRM_OK's answers that warnings everywhere would pass: on these
-       scenes the solver reaches the tolerance (all 3285 asserted solves
-       HRM_OK in double, 2310 of 2358 in float), so 9 in 10 must be HRM_OK. */
+       scenes the solver reaches the tolerance (all 4293 asserted solves
+       HRM_OK in double, 3294 of 3366 in float), so 9 in 10 must be HRM_OK. */
     CHECK(ok * 10 >= runs * 9, "an Li whose slope jumps: only %d of %d solves HRM_OK", ok, runs);
-    NOTE("Gauss-Kronrod and the pairs on the other scenes (not asserted): %d of %d solves silent", other_silent,
+    NOTE("the pairs on the other scenes (not asserted): %d of %d solves silent", other_silent,
          other_runs);
 }
 
