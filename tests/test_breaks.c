@@ -886,6 +886,22 @@ static void br_thin_sig(void *u, hrm_real t, hrm_real sa[NCH], hrm_real ss[NCH])
     }
 }
 
+/* A homogeneous medium of constants sigma_a, sigma_s (every channel), Li
+   li. */
+static hrm_medium br_homog(hrm_spectrum_fn li, double sa, double ss)
+{
+    hrm_medium m;
+    int c;
+    memset(&m, 0, sizeof m);
+    m.Li = li;
+    m.flags = HRM_MEDIUM_HOMOGENEOUS;
+    for (c = 0; c < NCH; ++c) {
+        m.const_sigma_a[c] = (hrm_real)sa;
+        m.const_sigma_s[c] = (hrm_real)ss;
+    }
+    return m;
+}
+
 /* 8. Jumps found automatically (no breakpoint given): nested Simpson and
    global Gauss-Kronrod, on the shadow scene at rtol 1e-4..1e-8, both
    medium paths. Where the search pays, both edges are located to within
@@ -975,20 +991,12 @@ static void br_jumps(void)
                search, when it was) */
             for (cb = 0; cb < 2; ++cb)
                 for (k = 0; k < 2; ++k) {
-                    hrm_medium mp;
+                    hrm_medium mp = br_homog(br_peak_li, 0.05, 0.1);
                     hrm_options op = hrm_default_options(ms[mi]);
                     hrm_result with, without;
-                    int c;
-                    memset(&mp, 0, sizeof mp);
-                    mp.Li = br_peak_li;
-                    if (cb)
+                    if (cb) {
+                        mp.flags = 0;
                         mp.sigma = br_thin_sig;
-                    else {
-                        mp.flags = HRM_MEDIUM_HOMOGENEOUS;
-                        for (c = 0; c < NCH; ++c) {
-                            mp.const_sigma_a[c] = (hrm_real)0.05;
-                            mp.const_sigma_s[c] = (hrm_real)0.1;
-                        }
                     }
                     op.rtol = (hrm_real)(k ? (real_is_float() ? 1e-4 : 1e-6) : 1e-2);
                     hrm_solve(&mp, 0, 10, &op, &with);
@@ -1009,17 +1017,9 @@ static void br_jumps(void)
                nested Simpson 138 against 89 at rtol 1e-6). L in closed
                form: sigma_s / sigma_t (1 - e^-1000). */
             for (k = 0; k < 2; ++k) {
-                hrm_medium mt;
+                hrm_medium mt = br_homog(br_one, 50, 50);
                 hrm_options op = hrm_default_options(ms[mi]);
                 hrm_result with, without;
-                int c;
-                memset(&mt, 0, sizeof mt);
-                mt.Li = br_one;
-                mt.flags = HRM_MEDIUM_HOMOGENEOUS;
-                for (c = 0; c < NCH; ++c) {
-                    mt.const_sigma_a[c] = (hrm_real)50;
-                    mt.const_sigma_s[c] = (hrm_real)50;
-                }
                 op.rtol = (hrm_real)(k ? (real_is_float() ? 1e-4 : 1e-6) : 1e-2);
                 CHECK_INT(hrm_solve(&mt, 0, 10, &op, &with), HRM_OK, "%s, thick ray, rtol %g: status",
                           hrm_method_name(ms[mi]), (double)op.rtol);
