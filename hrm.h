@@ -5808,10 +5808,11 @@ static HRM_DEVICE HRM__CALL hrm_real hrm__gk_warp_miss(hrm__ctx *c, const hrm__g
    two then bound K's error: over a random kink (slope rising 0..60 at
    0.02..0.98 of the interval), K's error was at most 0.89 of hl times
    the larger (0.3 typically). Returns hl times the larger of the highest
-   two, where they do not fall and stand above round-off, else 0. hrm__gk takes half of it, or
-   |K - G| where larger, as a miss, which the halves' trust never scales
-   down (trusted, a kink's estimate fell 32 times in one split and was
-   believed: 37 rtol off; K7 under a warp, 8 rtol). bench/sweep.c's
+   two, where they do not fall and stand above round-off, else 0.
+   hrm__gk takes half of it, or |K - G| where larger, as a miss, which
+   the halves' trust never scales down (trusted, a kink's estimate fell
+   32 times in one split and was believed: 37 rtol off; K7 under a warp,
+   8 rtol). bench/sweep.c's
    kinks: 64 of 4000 solves silent (worst 186 rtol) -> 4 (5.0);
    evaluations there +10%, fog and lights +4% and +5%; over the bench's
    scenes (geometric mean of each configuration's ratio) K15 +3%, K7 +18%
