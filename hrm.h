@@ -344,11 +344,11 @@
    least half them; each scaled once splits show its rate and samples look
    resolved, but a kink's; the pairs' embedded estimate and stage values'
    Newton series, the larger), raised where nodes miss the layer's 1 - Tr
-   (decoupled tau), a pair's neighbours lie 20 times apart (both > 0, or >
-   1 optical depth), others' 8 times (no fit: half the gap). An interval
-   whose error does not shrink may take rtol/16 of |L|, 16 times a call.
-   Worst HRM_OK run, smooth scenes: 2.3 rtol. Missed tolerances return the
-   best estimate and a warning: H_MIN (a step at h_min failed), MAX_EVALS
+   (decoupled tau), a pair's neighbours lie 20 times apart (both > 0, or > 1
+   optical depth), others' 8 (nested Simpson's 6; no fit: half the gap). An
+   interval whose error does not shrink may take rtol/16 of |L|, 16 times a
+   call. Worst HRM_OK run, smooth scenes: 2.3 rtol. Missed tolerances return
+   the best estimate and a warning: H_MIN (a step at h_min failed), MAX_EVALS
    (stats.evals <= max_evals, a user warp's calls 4 max_evals), STORAGE (a
    finish HRM_MAX_DEPTH deep), ROUNDOFF (bisection no longer helps, or t
    cannot resolve a step), TOLERANCE (the accepted estimates exceed atol + 3
@@ -4686,7 +4686,13 @@ static HRM_DEVICE int hrm__step_edges(const hrm__ctx *c, hrm_real p, hrm_real p_
      this.
    - nested Simpson and Gauss-Kronrod (factor 8, edges 0): an Li with three
      slope jumps on one K15 interval, |K - G| 1.1e-6, K 5.4e-3 off, 85
-     rtol with HRM_OK at rtol 1e-4. */
+     rtol with HRM_OK at rtol 1e-4. Nested Simpson's five samples, 1/16
+     of its first panels apart, at factor 6: an Li falling 1172 times over
+     one of them behind two slope jumps (samples 1.17, 0.63, 0.24, 0.035,
+     0.001: the largest fall short of 8 inside the bulk of the light),
+     S2 - S1 1.1e-3 of L, S2 1.03e-2 off, 3.9 rtol with HRM_OK at rtol
+     2.6e-3 (bench/sweep.c's kinks: its one silent answer; with 6 none,
+     fog and lights +1% and +0.4% evaluations, the bench's +0.02%). */
 static HRM_DEVICE void hrm__gap_miss(const hrm_real *x, const hrm_real *r, const hrm_real *f, const hrm_real *tau,
                                      int n, hrm_real hl, hrm_real factor, int edges, hrm_real *m)
 {
@@ -5507,7 +5513,7 @@ static HRM_DEVICE int hrm__resolved5(const hrm_real (*f)[HRM__CH], int ch, hrm_r
    of 5 keeps a factor 3 of margin: on the bench's smooth scenes (rtol
    1e-2..1e-10) the worst HRM_OK run was at 1.0 rtol, 11 with 15. M: the
    medium check's miss, and where two neighbouring samples differ by more
-   than 8 times, theirs (hrm__gap_miss: an Li whose slope jumps twice,
+   than 6 times, theirs (hrm__gap_miss: an Li whose slope jumps twice,
    falling 13 times between two samples of a first interval whose S1 and
    S2 agreed to 1/21 of their error, 7.7 rtol off with HRM_OK at rtol
    1e-3 on 17 samples). tau stays the halves' sum: nondecreasing. */
@@ -5554,7 +5560,7 @@ static HRM_DEVICE HRM__CALL void hrm__ns_five(const hrm__ctx *c, const hrm__pt *
         static const hrm_real x5[5] = {-1, HRM__R(-0.5), 0, HRM__R(0.5), 1};
         hrm_real fc[5];
         for (k = 0; k < 5; ++k) fc[k] = f[k][i];
-        hrm__gap_miss(x5, fc, fc, NULL, 5, (b->p - a->p) / 2, 8, 0, &M[i]);
+        hrm__gap_miss(x5, fc, fc, NULL, 5, (b->p - a->p) / 2, 6, 0, &M[i]);
     }
 }
 

@@ -1305,7 +1305,12 @@ static void ad_workspace(void)
    1e-5: the worst of bench/sweep.c's kinks for them, one K15 over the
    ray accepted with |K - G| 1e-5 of K, 186 rtol off with HRM_OK at rtol
    2.34e-5 (K7 under the equiangular warp: 8 rtol off before a flagged
-   interval's |K - G| was kept from the halves' trust).
+   interval's |K - G| was kept from the halves' trust). Scene 19, nested
+   Simpson at rtol 1e-2, 2.64e-3 and 1e-3: the sweep's one silent answer
+   for it, Li falling 1172 times over one of its first panels behind two
+   slope jumps, no two samples 8 times apart in the bulk of the light
+   (3.9 rtol off with HRM_OK at 2.64e-3 before neighbours 6 times apart
+   counted, hrm__gap_miss).
    ======================================================================== */
 typedef struct ad_kink_scene {
     test_fog fog;      /* sigma_t, and sigma_s 0.9 of it (fog_medium) */
@@ -1376,7 +1381,7 @@ static hrm_status ad_kink_solve(const ad_kink_scene *p, int v, double rtol, int 
 
 static void ad_kink(void)
 {
-    static const ad_kink_scene scenes[19] = {{{1.48, 0.9 * 1.48}, 1, {0.3776}, {0, 53.1}},
+    static const ad_kink_scene scenes[20] = {{{1.48, 0.9 * 1.48}, 1, {0.3776}, {0, 53.1}},
                                             {{1.158, 0.9 * 1.158}, 1, {0.3765}, {0, 52.9}},
                                             {{0.798, 0.9 * 0.798}, 1, {0.3777}, {0, 48.3}},
                                             {{3.341, 0.9 * 3.341}, 2, {0.2766, 0.4078}, {0, 10.7, 38.0}},
@@ -1394,22 +1399,24 @@ static void ad_kink(void)
                                             {{2.146, 0.9 * 2.146}, 2, {0.2491, 0.2966}, {0, 28.9, 36.9}},
                                             {{4.028, 0.9 * 4.028}, 3, {0.2358, 0.2502, 0.3465}, {0, 14.6, 50.6, 101.6}},
                                             {{2.943, 0.9 * 2.943}, 2, {0.2286, 0.2502}, {0, 5.8, 45.7}},
-                                            {{3.088, 0.9 * 3.088}, 1, {0.362589}, {0, 9.2993}}};
+                                            {{3.088, 0.9 * 3.088}, 1, {0.362589}, {0, 9.2993}},
+                                            {{2.3351, 0.9 * 2.3351}, 2, {0.275514, 0.410376}, {0, 12.9182, 49.1404}}};
     static const char *const names[19] = {"nested-simpson", "gk K15", "gk K7", "gk local K15", "gk local K7",
                                           "dormand-prince", "fehlberg", "cash-karp", "verner", "bogacki-shampine",
                                           "dormand-prince fit", "fehlberg fit", "cash-karp fit", "verner fit",
                                           "bogacki-shampine fit", "gk K15 fit", "gk K7 fit", "gk local K15 fit",
                                           "gk local K7 fit"};
-    static const double rts[3] = {1e-2, 1e-3, 1e-4}, tight[3] = {1e-4, 3e-5, 1e-5}, gk[3] = {1e-4, 2.34e-5, 1e-5};
+    static const double rts[3] = {1e-2, 1e-3, 1e-4}, tight[3] = {1e-4, 3e-5, 1e-5}, gk[3] = {1e-4, 2.34e-5, 1e-5},
+                        ns[3] = {1e-2, 2.64e-3, 1e-3};
     static const char *const meds[3] = {"constants", "callbacks", "coupled tau"};
     int i, v, k, silent = 0, other_silent = 0, other_runs = 0, runs = 0, ok = 0, within = 0, fc_silent = 0;
     double worst = 0;
-    for (i = 0; i < 19; ++i)
+    for (i = 0; i < 20; ++i)
         for (v = 0; v < (i < 15 || i == 18 ? 19 : 1); ++v)
             for (k = 0; k < 27; ++k) {
                 /* rtol k / 9, medium k / 3 % 3, warp k % 3 */
                 int ri = k / 9, med = k / 3 % 3, w = k % 3;
-                const double *rt = i < 15 ? rts : i < 18 ? tight : gk;
+                const double *rt = i < 15 ? rts : i < 18 ? tight : i == 18 ? gk : ns;
                 double e;
                 hrm_status st;
                 if (med == 2 && v >= 10) continue; /* a fit takes tau decoupled (HRM_ERR_BAD_OPTION) */
@@ -1443,8 +1450,8 @@ static void ad_kink(void)
          "%d warnings within rtol", worst, silent, ok, runs, within);
     NOTE("float with tau coupled (not asserted): %d solves silent", fc_silent);
     /* A test of HRM_OK's answers that warnings everywhere would pass: on these
-       scenes the solver reaches the tolerance (all 4293 asserted solves
-       HRM_OK in double, 3294 of 3366 in float), so 9 in 10 must be HRM_OK. */
+       scenes the solver reaches the tolerance (all 4320 asserted solves
+       HRM_OK in double, 3312 of 3384 in float), so 9 in 10 must be HRM_OK. */
     CHECK(ok * 10 >= runs * 9, "an Li whose slope jumps: only %d of %d solves HRM_OK", ok, runs);
     NOTE("the pairs on the other scenes (not asserted): %d of %d solves silent", other_silent,
          other_runs);
