@@ -228,7 +228,7 @@
      given with sigma_a, sigma_s or sigma_t (even homogeneous)
                                    HRM_ERR_BAD_MEDIUM, before
      feature denormal or huge      valid: the scan's 4097 points at most,
-                                   its 33 at least
+                                   its 9 a piece at least
      a constant beyond R           HRM_ERR_RANGE, before
      a constant denormal; within R (warnings where the ray is opaque
      within t's resolution)        valid
@@ -403,8 +403,8 @@
    breakpoint and the solve run again (three halvings that split a smooth
    change end the search). Every adaptive method (fixed-step ones with
    find_jumps 1) first scans sigma_t (callbacks, no transmittance callback) at
-   the layer's first panels' degree-8 points (33, one panel a piece at least),
-   or evenly at medium.feature's spacing (4097 at most): a factor 2 between
+   the layer's first panels' degree-8 points (33, one panel a piece at least;
+   medium.feature: gaps of at most it, 4097 points at most): a factor 2 between
    neighbours is bisected, a jump or edge made a breakpoint, a steep smooth
    change or a sample 1/8 off both neighbours taught to the layer; the scan
    ends where its tau passes 2 ln(64 / rtol). Located points: result.jumps (the
@@ -685,8 +685,9 @@ typedef struct hrm_medium {
                                           along t of its thinnest feature (a
                                           voxel, a noise's finest wisp); the
                                           medium scan samples sigma at this
-                                          spacing (BREAKPOINTS). 0: unknown,
-                                          33 samples a ray */
+                                          spacing, 9 a piece at least
+                                          (BREAKPOINTS). 0: unknown, 33
+                                          samples a ray */
 } hrm_medium;
 
 typedef struct hrm_options {
@@ -7459,11 +7460,13 @@ static HRM_DEVICE HRM__CALL int hrm__locate_sigma_jump(hrm__ctx *c, hrm_real a, 
 /* The medium scan (options.find_jumps, sigma from callbacks): sigma_t at
    nscan + 1 offsets (hrm__scan_at: by default the degree-8 Lobatto points
    of panels laid over the pieces between the breakpoints, 4 at least and
-   one a piece (hrm__scan_layout: 33 points without breakpoints), kept for
-   the transmittance layer, whose march tries those panels first on them;
-   as many as the medium's feature asks for, evenly spaced, at most
-   HRM__SCAN_MAX, and so with more than HRM__SCAN_Q pieces; and both sides
-   of each breakpoint);
+   one a piece (hrm__scan_layout: 33 points without breakpoints); with the
+   medium's feature, as many panels as keep its points that close, one a
+   piece at least (a constant medium as callbacks: 9 samples a ray); kept
+   for the transmittance layer, whose march tries those panels first on
+   them; where they would be more than HRM__SCAN_Q, evenly spaced, at
+   most HRM__SCAN_MAX (the feature's spacing, or 33 points); and both
+   sides of each breakpoint);
    where neighbours differ by a factor 2 or more the jump between them is
    located and made a breakpoint before the method runs, so that a slab or
    a bounding box is integrated at each piece's order by every method and
@@ -7492,6 +7495,9 @@ static HRM_DEVICE HRM__CALL int hrm__locate_sigma_jump(hrm__ctx *c, hrm_real a, 
    rules, which still cover the rest, spend little there (a cloud's core:
    a quarter of a camera ray's lookups saved). */
 #define HRM__SCAN_MAX 4096
+/* The widest gap between a panel's degree-8 points, over its width
+   (sin(pi/8)/2: beside its centre). */
+#define HRM__SCAN_GAP HRM__R(0.19134171618254488)
 
 /* The scan's panels over the pieces between the breakpoints: one a piece
    at least, 4 in all at least, the rest to the pieces whose panels are
@@ -7500,14 +7506,26 @@ static HRM_DEVICE HRM__CALL int hrm__locate_sigma_jump(hrm__ctx *c, hrm_real a, 
 static HRM_DEVICE int hrm__scan_layout(const hrm__ctx *c, hrm_real b[HRM__SCAN_Q + 1])
 {
     int np = c->nbrk + 1, nq = np > 4 ? np : 4, q[HRM__SCAN_Q], i, j, k = 0, e;
-    hrm_real lo[HRM__SCAN_Q], len[HRM__SCAN_Q];
+    hrm_real lo[HRM__SCAN_Q], len[HRM__SCAN_Q], wide = c->m->feature / HRM__SCAN_GAP;
     if (np > HRM__SCAN_Q) return 0;
     for (i = 0; i < np; ++i) {
         lo[i] = i ? c->brk_off[i - 1] : 0;
         len[i] = (i < c->nbrk ? c->brk_off[i] : c->off_end) - lo[i];
         q[i] = 1;
     }
-    for (e = np; e < nq; ++e) {
+    if (wide > 0) {
+        /* with a feature: each piece's panels no wider than its spacing
+           asks for, the layout only where they are HRM__SCAN_Q at most */
+        for (i = 0, nq = 0; i < np; ++i) {
+            hrm_real n = len[i] / wide;
+            if (!(n <= HRM__SCAN_Q)) return 0;
+            q[i] = n > 1 ? (int)n : 1;
+            q[i] += (hrm_real)q[i] < n;
+            nq += q[i];
+        }
+        if (nq > HRM__SCAN_Q) return 0;
+    }
+    for (e = wide > 0 ? nq : np; e < nq; ++e) {
         int best = 0;
         for (i = 1; i < np; ++i)
             if (len[i] * (hrm_real)q[best] > len[best] * (hrm_real)q[i]) best = i;
@@ -7527,14 +7545,13 @@ static HRM_DEVICE HRM__CALL void hrm__scan_medium(hrm__ctx *c)
     int k = 1, b = 0, i, nscan = HRM__SCAN, prev = 0, keep, nq = 0;
     hrm_real fp = 0;
     hrm__fill(tau, HRM__CH, 0);
-    if (c->m->feature > 0) {
-        /* as many as the medium's thinnest feature asks for */
+    nq = hrm__scan_layout(c, pb);
+    if (nq) {
+        nscan = 8 * nq;
+    } else if (c->m->feature > 0) {
+        /* evenly at the spacing of the medium's thinnest feature */
         hrm_real n = c->off_end / c->m->feature;
-        if (n > HRM__SCAN) nscan = n >= HRM__SCAN_MAX ? HRM__SCAN_MAX : (int)n + 1;
-    }
-    if (nscan == HRM__SCAN) {
-        nq = hrm__scan_layout(c, pb);
-        if (nq) nscan = 8 * nq;
+        nscan = n >= HRM__SCAN_MAX ? HRM__SCAN_MAX : (int)n + 1;
     }
     /* the samples kept for the layer's first panels */
     keep = c->decoupled && nq && c->tau->end == c->off_end;

@@ -637,6 +637,75 @@ static void br_scan(void)
         }
 }
 
+/* medium.feature sets the scan's spacing (hrm__scan_layout): the scan's
+   samples are the degree-8 points of panels no wider than feature over
+   sin(pi/8)/2 (every gap at most feature), which the transmittance layer
+   takes as its first panels. Every adaptive method, no warp and the
+   equiangular warp of a light 0.5 from the ray at 7:
+   - a constant medium (sigma_a 0.1, sigma_s 0.4 through callbacks) with
+     feature 10 (the ray's length): one panel, its 9 samples the whole
+     cost beyond the source's nodes (33 with feature 0, 4 panels); L =
+     0.8 (1 - e^-5) within 3 rtol with HRM_OK;
+   - slabs of br_scan with feature their width: both faces found between
+     samples no farther apart than it (3 and 6 panels), L within 3 rtol.
+   The distance warp's reach march adds its own panel (9 samples) to both,
+   so it is not compared here. */
+static void br_feature(void)
+{
+    static const hrm_method ms[] = {HRM_NESTED_SIMPSON, HRM_GAUSS_KRONROD, HRM_BOGACKI_SHAMPINE,
+                                    HRM_DORMAND_PRINCE, HRM_FEHLBERG, HRM_CASH_KARP, HRM_VERNER};
+    static const double slabs[2][2] = {{4.1, 4.9}, {4.05, 4.42}};
+    double rtol = real_is_float() ? 1e-3 : 1e-5;
+    int mi, w, gk, si, c;
+    for (mi = 0; mi < 7; ++mi)
+        for (gk = 0; gk < (ms[mi] == HRM_GAUSS_KRONROD ? 3 : 1); ++gk)
+            for (w = 0; w < 2; ++w) {
+                br_scene s = {0, 0, 0};
+                hrm_medium m;
+                hrm_options o = hrm_default_options(ms[mi]);
+                hrm_result r, r0;
+                const char *name = gk == 1 ? "gauss-kronrod K7" : gk == 2 ? "gauss-kronrod local" : hrm_method_name(ms[mi]);
+                memset(&m, 0, sizeof m);
+                m.user = &s;
+                m.sigma_a = br_sa;
+                m.sigma_s = br_ss;
+                m.Li = br_one;
+                o.rtol = (hrm_real)rtol;
+                if (gk == 1) o.gk_rule = HRM_GK_K7;
+                if (gk == 2) o.gk_mode = HRM_GK_LOCAL;
+                if (w) {
+                    o.warp.kind = HRM_WARP_EQUIANGULAR;
+                    o.warp.delta = (hrm_real)7;
+                    o.warp.D = (hrm_real)0.5;
+                }
+                CHECK_INT(hrm_solve(&m, 0, 10, &o, &r0), HRM_OK, "constant, %s, warp %d, feature 0: status", name, w);
+                CHECK(r0.stats.medium_evals <= r0.stats.evals + 33,
+                      "constant, %s, warp %d, feature 0: %ld medium calls for %ld evaluations (33 more at most)",
+                      name, w, r0.stats.medium_evals, r0.stats.evals);
+                m.feature = 10;
+                CHECK_INT(hrm_solve(&m, 0, 10, &o, &r), HRM_OK, "constant, %s, warp %d, feature 10: status", name, w);
+                CHECK(r.stats.medium_evals <= r.stats.evals + 9,
+                      "constant, %s, warp %d, feature 10: %ld medium calls for %ld evaluations (9 more at most)",
+                      name, w, r.stats.medium_evals, r.stats.evals);
+                for (c = 0; c < NCH; ++c)
+                    CHECK_REL(r.L[c], 0.8 * -expm1(-5.0), 3 * rtol, "constant, %s, warp %d, feature 10: L", name, w);
+                for (si = 0; si < 2; ++si) {
+                    s.lo = slabs[si][0];
+                    s.hi = slabs[si][1];
+                    m.sigma_a = br_slab_a;
+                    m.sigma_s = br_slab_s;
+                    m.feature = (hrm_real)(s.hi - s.lo);
+                    CHECK_INT(hrm_solve(&m, 0, 10, &o, &r), HRM_OK, "slab [%g, %g], %s, warp %d, feature: status",
+                              s.lo, s.hi, name, w);
+                    CHECK_INT(r.njumps, 2, "slab [%g, %g], %s, warp %d, feature: both faces found", s.lo, s.hi, name,
+                              w);
+                    for (c = 0; c < NCH; ++c)
+                        CHECK_REL(r.L[c], br_slab_L(s.lo, s.hi), 3 * rtol, "slab [%g, %g], %s, warp %d, feature: L",
+                                  s.lo, s.hi, name, w);
+                }
+            }
+}
+
 /* 5. The adaptive methods with the shadow's edges as breakpoints: within
    3 rtol with HRM_OK (the bound on smooth integrands: each piece is
    smooth), on both medium paths; their evaluation counts against the same
@@ -1878,6 +1947,7 @@ void breaks_tests(void)
     RUN_GROUP(br_tau);
     RUN_GROUP(br_layer_miss);
     RUN_GROUP(br_scan);
+    RUN_GROUP(br_feature);
     RUN_GROUP(br_first_panels);
     RUN_GROUP(br_adaptive);
     RUN_GROUP(br_budget);
