@@ -773,13 +773,11 @@ typedef struct hrm_options {
                            0: 1e-3. Typical: 1e-2 (previews) to 1e-4 */
     hrm_real cutoff;    /* opacity cut-off: hrm_transmittance's estimator
                            stops once Tr (every channel) falls below it, and
-                           returns the Tr reached there; hrm_solve, where Tr
-                           has a closed form (homogeneous, or the
-                           transmittance callback), solves up to there, Tr
-                           of the whole ray, the remainder estimated in
-                           result.error (sigma callbacks: no cut).
-                           stats.t_cut says where. 0: none. Typical: 1e-3
-                           to 1e-4. Within [0, 1] */
+                           returns the Tr reached there; hrm_solve solves
+                           up to there (see hrm_solve), the remainder
+                           estimated in result.error. stats.t_cut says
+                           where. 0: none. Typical: 1e-3 to 1e-4. Within
+                           [0, 1] */
 
     /* The solve's deep storage (the transmittance layer, the adaptive
        methods' intervals, samples and finish) in memory the caller owns
@@ -832,12 +830,18 @@ HRM_API HRM_DEVICE size_t hrm_workspace_size(const hrm_options *options);
 
 /* Solve along one ray from t0 to t1 (t0 <= t1, both finite).
    medium, result: required.  options: NULL means all defaults.
-   options->cutoff > 0 and a closed-form Tr (homogeneous, or the
-   transmittance callback): early ray termination where every channel's
-   Tr falls below it (stats.t_cut); L covers [t0, t_cut], Tr the whole
-   ray, and an adaptive method's result.error adds the remainder's
-   estimate, Tr(t0, t_cut) - Tr(t0, t1) times the mean S / sigma_t of the
-   part solved. With sigma callbacks the cut-off is not applied.
+   options->cutoff > 0: early ray termination (stats.t_cut); L covers
+   [t0, t_cut], and an adaptive method's result.error adds the
+   remainder's estimate. With a closed-form Tr (homogeneous, or the
+   transmittance callback): t_cut where every channel's Tr falls below
+   the cut-off, Tr the whole ray's, the estimate Tr(t0, t_cut) - Tr(t0,
+   t1) times the mean S / sigma_t of the part solved. With sigma
+   callbacks, where the medium scan runs and tau comes from the
+   transmittance layer (the adaptive methods' default; not under the
+   distance warp): t_cut the scan's first sample where its trapezoid tau
+   passes ln(1 / cutoff) in every channel, Tr = Tr(t0, t_cut) (the whole
+   ray's is at most it), the estimate that Tr times the largest S /
+   sigma_t sampled (at least the mean); elsewhere no cut.
    Returns HRM_OK, a warning (result holds the best estimate) or an error
    (result holds L = 0, Tr = 1, and the stats counted so far). */
 HRM_API HRM_DEVICE hrm_status hrm_solve(const hrm_medium *medium, hrm_real t0, hrm_real t1,
@@ -1547,6 +1551,11 @@ typedef struct hrm__ctx {
     hrm_real w_delta;          /* equiangular: the light's foot on the ray */
     int find_jumps;            /* locate jumps (options.find_jumps) */
     int scan;                  /* scan the medium for jumps first */
+    hrm_real cut_tau;          /* options.cutoff's optical depth, where the
+                                  scan may cut the ray (0: it may not) */
+    hrm_real cut_at;           /* where it cut (offset; 0: nowhere) */
+    int keep_layer;            /* hrm__setup on a ray cut by the scan: the
+                                  layer keeps what the scan taught it */
     int expo;                  /* exponentially fitted rules */
     int tau_from_tr;           /* tau at nodes is -ln of the transmittance
                                   callback's Tr: capped where it underflows */
@@ -2354,6 +2363,19 @@ static HRM_DEVICE void hrm__tau_init(hrm__tau *L, hrm_real end, hrm_real tol)
     L->tol = tol;
     L->nmem = 0;
     L->scan_q = 0;
+    hrm__tau_rebuild(L);
+}
+
+/* The layer of a ray cut short at end: the scan's whole panels and what
+   it taught up to there kept. */
+static HRM_DEVICE void hrm__tau_cut(hrm__tau *L, hrm_real end)
+{
+    int q = 0;
+    while (q < L->scan_q && L->scan_b[q + 1] <= end * (1 + 4 * HRM__EPS)) ++q;
+    L->scan_q = q;
+    if (q && L->scan_b[q] > end) L->scan_b[q] = end; /* (rounding) */
+    while (L->nmem > 0 && L->mem_x[L->nmem - 1] >= end) L->nmem--;
+    L->end = end;
     hrm__tau_rebuild(L);
 }
 
@@ -6964,7 +6986,7 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, 
     c->ef = ef;
     if (c->expo) hrm__efit_setup(c, o);
     c->tau = layer;
-    if (layer) hrm__tau_init(layer, HRM__FINITE(c->T) ? c->T : HRM__R(1e30), o->tau_tol);
+    if (layer && !c->keep_layer) hrm__tau_init(layer, HRM__FINITE(c->T) ? c->T : HRM__R(1e30), o->tau_tol);
     if (t0 == t1) return HRM_OK;
 
     if (tr_only && HRM__FINITE(c->T)) {
@@ -6994,7 +7016,8 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, 
         hrm__map(c, c->pb, &c->off_end, &J);
         hrm__warn(c, HRM_WARN_ROUNDOFF);
     }
-    if (layer) hrm__tau_init(layer, c->off_end, o->tau_tol);
+    if (layer && c->keep_layer) hrm__tau_cut(layer, c->off_end);
+    else if (layer) hrm__tau_init(layer, c->off_end, o->tau_tol);
     /* the breakpoints strictly inside what is integrated, as offsets */
     for (i = 0; i < o->nbreaks; ++i) {
         hrm_real off = o->breaks[i] - t0;
@@ -7600,6 +7623,11 @@ static HRM_DEVICE HRM__CALL void hrm__scan_medium(hrm__ctx *c)
                 hrm__tau_learn(c->tau, a, sa);
         }
         a = x;
+        if (c->cut_tau > 0 && least > c->cut_tau && x < c->off_end) {
+            /* options.cutoff passed: the ray ends here */
+            c->cut_at = x;
+            return;
+        }
         if (least > deep) return;
         fp = fa;
         prev = !is_brk;
@@ -8040,6 +8068,38 @@ static HRM_DEVICE HRM__NOINLINE hrm_status hrm__with_gk(hrm__job *j)
     return hrm__stage(j);
 }
 
+/* The ray cut where the medium scan's tau passed options.cutoff's: c set
+   up again on [t0, t0 + c->cut_at], with what the scan found (its jumps,
+   the layer's first panels and samples, its lookups) kept. A frame of its
+   own, left before the solve runs. */
+static HRM_DEVICE HRM__NOINLINE hrm_status hrm__cut_ray(hrm__job *j, hrm__ctx *c)
+{
+    hrm_real brk[HRM_MAX_BREAKS], jumps[HRM_MAX_JUMPS], t1 = c->t0 + c->cut_at;
+    hrm_stats stats = c->stats;
+    hrm_status warning = c->warning, st;
+    int nbrk = c->nbrk, njumps = c->njumps, k;
+    memcpy(brk, c->brk_off, sizeof brk);
+    memcpy(jumps, c->jumps, sizeof jumps);
+    memset(c, 0, sizeof *c);
+    c->ns = (hrm__ns_store *)j->at[3];
+    c->gks = (hrm__gk_store *)j->at[4];
+    c->finish = (hrm__ns_half *)j->at[5];
+    c->pieces = (hrm__piece_tab *)j->at[7];
+    c->keep_layer = 1;
+    st = hrm__setup(c, (hrm__tau *)j->at[0], (hrm__memo_tab *)j->at[1], (hrm__efit *)j->at[2], j->m, j->t0, t1,
+                    &j->o, j->tr_only);
+    if (st != HRM_OK) return st;
+    /* the scan's breakpoints (the options' among them) inside the cut ray */
+    for (k = 0, c->nbrk = 0; k < nbrk; ++k)
+        if (brk[k] < c->off_end) c->brk_off[c->nbrk++] = brk[k];
+    for (k = 0; k < njumps; ++k)
+        if (jumps[k] < t1) c->jumps[c->njumps++] = jumps[k];
+    c->stats = stats;
+    c->stats.t_cut = t1;
+    if (warning != HRM_OK) c->warning = warning;
+    return HRM_OK;
+}
+
 /* The solve itself, once its storage is held (c: its context, in the
    caller's workspace or the frame of hrm__solve_local). */
 static HRM_DEVICE HRM__CALL HRM__NOINLINE hrm_status hrm__solve_job(hrm__job *j, hrm__ctx *c)
@@ -8072,7 +8132,16 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE hrm_status hrm__solve_job(hrm__job *j,
         for (k = 0; k < HRM__CH; ++k) j->Tr[k] = HRM_EXP(-y[k]);
         return c->warning;
     }
+    /* options.cutoff on sigma callbacks: the scan's trapezoid tau says
+       where (a solve on the layer; the distance warp's reach marches it
+       beforehand, and ends the ray where Tr < eps / 2 itself) */
+    if (o->cutoff > 0 && c->decoupled && !j->tr_only && c->warp != HRM_WARP_DISTANCE && HRM__FINITE(t1))
+        c->cut_tau = -HRM_LOG(o->cutoff);
     if (c->scan && !(c->closed && !c->decoupled && !c->use_le && !c->use_li)) hrm__scan_medium(c);
+    if (c->status == HRM_OK && c->cut_at > 0) {
+        st = hrm__cut_ray(j, c);
+        if (st != HRM_OK) return st;
+    }
     if (c->status != HRM_OK) {
         hrm__fill(y, HRM__NY, 0); /* a callback's bad output: the status says it */
     } else if (!c->use_le && !c->use_li && c->closed) {
@@ -8082,6 +8151,14 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE hrm_status hrm__solve_job(hrm__job *j,
         hrm__dispatch(c, o, y);
     }
     st = hrm__finish(c, o, y, j->L, j->Tr, j->err);
+    for (k = 0; k < HRM__CH && c->keep_layer && st >= 0; ++k) {
+        /* cut by options.cutoff: what lies past t_cut, estimated with the
+           largest S / sigma_t the solve sampled (at least its mean, L /
+           (1 - Tr)), over Tr at the cut (the whole ray's is at most it) */
+        hrm_real a = j->Tr[k], rem = 1 - a > 0 ? j->L[k] / (1 - a) : 0;
+        rem = (c->src_max[k] > rem ? c->src_max[k] : rem) * a;
+        if (j->err[k] >= 0 && rem > 0) j->err[k] += rem;
+    }
     *j->stats = c->stats;
     if (j->njumps && st >= 0) {
         *j->njumps = c->njumps;

@@ -25,7 +25,7 @@
    which fills the adaptive drivers' interval storage and sends them to
    their left-to-right finish), with the jump search on and off; then the
    other options one at a time (jitter, stratified, the step controls, a
-   sigma_t callback, an infinite ray). Options a method rejects
+   sigma_t callback, an infinite ray, a cut-off). Options a method rejects
    (HRM_ERR_BAD_OPTION) are skipped. hrm_transmittance runs on sigma
    callbacks, with the transmittance layer (its default) and with coupled
    tau under every method (whose rule then integrates tau).
@@ -176,11 +176,13 @@ static hrm_real st_u_of_t(void *u, hrm_real t) { (void)u; return isinf(t) ? (hrm
 /* ----------------------------------------------------------------------
    The cases. */
 enum { ST_MED_CONST, ST_MED_LAYER, ST_MED_COUPLED, ST_MED_TR, ST_MED_COUNT };
-enum { ST_V_NONE, ST_V_JITTER, ST_V_STRATIFIED, ST_V_MUNOZ, ST_V_GONTERMAN, ST_V_SIGMA_T, ST_V_INFINITE, ST_V_COUNT };
+enum { ST_V_NONE, ST_V_JITTER, ST_V_STRATIFIED, ST_V_MUNOZ, ST_V_GONTERMAN, ST_V_SIGMA_T, ST_V_INFINITE, ST_V_CUTOFF,
+       ST_V_COUNT };
 static const char *const st_med_name[ST_MED_COUNT] = {"constants", "sigma cb", "sigma cb coupled", "Tr cb"};
 static const char *const st_warp_name[4] = {"no warp", "distance", "equiangular", "user warp"};
 static const char *const st_v_name[ST_V_COUNT] = {"", ", jitter", ", stratified", ", Munoz control",
-                                                 ", Gonterman control", ", sigma_t cb", ", t1 = inf"};
+                                                 ", Gonterman control", ", sigma_t cb", ", t1 = inf",
+                                                 ", cut-off 0.5"};
 
 typedef struct st_case {
     hrm_method method;
@@ -280,6 +282,7 @@ static void st_setup(const st_case *k, st_scene *s, hrm_real *brk, hrm_medium *m
     case ST_V_STRATIFIED: o->stratified = 1; break;
     case ST_V_MUNOZ: o->control = HRM_CONTROL_MUNOZ; break;
     case ST_V_GONTERMAN: o->control = HRM_CONTROL_GONTERMAN; break;
+    case ST_V_CUTOFF: o->cutoff = (hrm_real)0.5; break; /* the ray cut (hrm__cut_ray) */
     default: break;
     }
     *t1 = k->variant == ST_V_INFINITE ? (hrm_real)INFINITY : (hrm_real)8;
