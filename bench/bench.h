@@ -165,6 +165,22 @@ typedef struct bench_trans {
     bench_trans_row rows[BENCH_MAX_METHODS * BENCH_SECTION_PARAMS];
 } bench_trans;
 
+/* Early ray termination on sigma callbacks: the thick scene and the
+   cloud, no warp, each adaptive method at the section's tolerances,
+   [0] without options.cutoff, [1] with BENCH_CUTOFF. */
+#define BENCH_CUT_SCENES 2
+#define BENCH_CUTOFF 1e-3
+typedef struct bench_cut_row {
+    int scene, method;
+    double param;
+    bench_row r[2];
+} bench_cut_row;
+
+typedef struct bench_cut {
+    int n;
+    bench_cut_row rows[BENCH_CUT_SCENES * BENCH_MAX_METHODS * BENCH_SECTION_PARAMS];
+} bench_cut;
+
 /* Breakpoints on the occluder and slab scenes: per method, warp and
    medium, the fewest evaluations from which the sweep stays within 1e-2,
    1e-4, 1e-6 (-1: not reached), [0] without breakpoints or the jump
@@ -240,6 +256,7 @@ typedef struct bench_state {
 
     bench_equi equi;
     bench_trans trans;
+    bench_cut cut;
     bench_brk brk[BENCH_BRK_SCENES];
     bench_overhead overhead[2]; /* directional (constants), hetero (callbacks) */
 } bench_state;
@@ -282,6 +299,7 @@ void bench_run_scene(bench_state *st, int si);
 /* The summary sections' measurements, after the sweeps. */
 void bench_measure_equiangular(bench_state *st);
 void bench_measure_transmittance(bench_state *st);
+void bench_measure_cutoff(bench_state *st);
 void bench_measure_breaks(bench_state *st);
 void bench_measure_overhead(bench_state *st); /* only when timed */
 

@@ -300,6 +300,7 @@ static int bench_run(bench_state *st)
         fprintf(stderr, "\r\033[K[    ] equiangular ratios, transmittance, library overhead");
     bench_measure_equiangular(st);
     bench_measure_transmittance(st);
+    bench_measure_cutoff(st);
     bench_measure_breaks(st);
     bench_measure_overhead(st);
     if (!st->progress.tty)

@@ -656,11 +656,12 @@ static double bench_section_solve_breaks(bench_state *st, int si, const bench_me
                                          bench_warp_id warp, double param, const hrm_medium *m,
                                          bench_calls *calls, hrm_tau_mode tau_mode,
                                          const char *label, const hrm_real *breaks, int nbreaks,
-                                         int find_jumps, bench_row *row)
+                                         int find_jumps, double cutoff, bench_row *row)
 {
     bench_case bc;
     bench_case_init(&bc, st, &bench_scenes[si], me, warp, param, m, calls, label);
     bc.options.tau_mode = tau_mode;
+    bc.options.cutoff = (hrm_real)cutoff;
     bc.options.breaks = breaks;
     bc.options.nbreaks = nbreaks;
     bc.options.find_jumps = find_jumps;
@@ -679,7 +680,7 @@ static double bench_section_solve(bench_state *st, int si, const bench_method *m
                                   bench_row *row)
 {
     return bench_section_solve_breaks(st, si, me, warp, param, m, calls, tau_mode, label, NULL, 0,
-                                      0, row);
+                                      0, 0, row);
 }
 
 void bench_measure_equiangular(bench_state *st)
@@ -766,6 +767,37 @@ void bench_measure_transmittance(bench_state *st)
 }
 
 /* ------------------------------------------------------------------------ */
+/* Early ray termination on sigma callbacks                                 */
+/* ------------------------------------------------------------------------ */
+
+void bench_measure_cutoff(bench_state *st)
+{
+    static const char *const names[BENCH_CUT_SCENES] = {"thick", "cloud"};
+    int s, mi, k, c;
+    st->cut.n = 0;
+    for (s = 0; s < BENCH_CUT_SCENES; ++s) {
+        int si = bench_find_scene(names[s]);
+        hrm_medium m;
+        bench_calls calls;
+        if (si < 0 || !bench_scene_selected(&st->cfg, si)) continue;
+        bench_medium_build(&bench_scenes[si], BENCH_MEDIUM_SIGMA, &m, &calls);
+        for (mi = 0; mi < st->nmethods; ++mi) {
+            const bench_method *me = &st->methods[mi];
+            if (bench_is_swept_over_n(me) || me->expo || !bench_method_in_sections(st, mi)) continue;
+            for (k = 0; k < BENCH_SECTION_PARAMS; ++k) {
+                bench_cut_row *r = &st->cut.rows[st->cut.n++];
+                r->scene = si;
+                r->method = mi;
+                r->param = bench_section_tols[k];
+                for (c = 0; c < 2; ++c)
+                    bench_section_solve_breaks(st, si, me, BENCH_WARP_NONE, r->param, &m, &calls, HRM_TAU_DEFAULT,
+                                               "sigma", NULL, 0, 0, c ? BENCH_CUTOFF : 0, &r->r[c]);
+            }
+        }
+    }
+}
+
+/* ------------------------------------------------------------------------ */
 /* Breakpoints on the occluder scene                                        */
 /* ------------------------------------------------------------------------ */
 
@@ -832,7 +864,7 @@ void bench_measure_breaks(bench_state *st)
                                                                HRM_TAU_DEFAULT, bench_medium_names[mids[j]],
                                                                way == 1 ? br : NULL,
                                                                way == 1 ? b->nbreaks : 0,
-                                                               way == 0 ? -1 : way == 1 ? 0 : 1, &row);
+                                                               way == 0 ? -1 : way == 1 ? 0 : 1, 0, &row);
                             ev[k] = row.stats.evals;
                         }
                         bench_brk_fewest(ev, er, np, r->fewest[way]);

@@ -758,6 +758,60 @@ static void bench_report_transmittance(const bench_state *st, const bench_out *o
     bench_table_emit(&t, o);
 }
 
+/* Early ray termination on sigma callbacks: per scene, method and rtol,
+   the costs and errors without and with options.cutoff. */
+static void bench_report_cutoff(const bench_state *st, const bench_out *o)
+{
+    const bench_cut *cu = &st->cut;
+    int i, c, scene = -1;
+    bench_table t;
+    if (!cu->n) return;
+    bench_section(o, "Early ray termination on sigma callbacks");
+    bench_both(o,
+               "options.cutoff = %.0e against none, the medium through sigma callbacks, no warp: "
+               "the medium scan ends the ray at its first sample whose trapezoid tau passes "
+               "ln(1 / cutoff) in every channel (t_cut). Errors against the whole ray's "
+               "reference (what the cut drops included), with the method's own estimate "
+               "(result.error / |Lref|, the remainder's estimate in it) in parentheses; "
+               "* a warning status, ! an error.\n",
+               BENCH_CUTOFF);
+    for (i = 0; i <= cu->n; ++i) {
+        const bench_cut_row *r = i < cu->n ? &cu->rows[i] : NULL;
+        if (!r || r->scene != scene) {
+            if (scene >= 0) bench_table_emit(&t, o);
+            if (!r) break;
+            scene = r->scene;
+            bench_both(o, "\n%s: %s.\n\n", bench_scenes[scene].name, bench_scenes[scene].description);
+            bench_table_init(&t, 9);
+            bench_table_row(&t);
+            bench_table_cell(&t, 0, "method");
+            bench_table_cell(&t, 1, "rtol");
+            bench_table_cell(&t, 2, "evals");
+            bench_table_cell(&t, 3, "medium_evals");
+            bench_table_cell(&t, 4, "rel_error (estimate)");
+            bench_table_cell(&t, 5, "t_cut");
+            bench_table_cell(&t, 6, "evals, cut");
+            bench_table_cell(&t, 7, "medium_evals, cut");
+            bench_table_cell(&t, 8, "rel_error (estimate), cut");
+        }
+        bench_table_row(&t);
+        if (i == 0 || cu->rows[i - 1].method != r->method || cu->rows[i - 1].scene != r->scene)
+            bench_table_cell(&t, 0, "%s", st->methods[r->method].name);
+        bench_table_cell(&t, 1, "%.0e", r->param);
+        for (c = 0; c < 2; ++c) {
+            const bench_row *w = &r->r[c];
+            int col = c ? 6 : 2;
+            bench_table_cell(&t, col, "%ld", w->stats.evals);
+            bench_table_cell(&t, col + 1, "%ld", w->stats.medium_evals);
+            if (w->status < 0 || !bench_finite(w->rel_error))
+                bench_table_cell(&t, col + 2, "error!");
+            else
+                bench_table_cell(&t, col + 2, "%.1e (%.1e)%s", w->rel_error, w->est_error, w->status > 0 ? "*" : "");
+        }
+        bench_table_cell(&t, 5, "%.3g", (double)r->r[1].stats.t_cut);
+    }
+}
+
 /* ------------------------------------------------------------------------ */
 /* Library overhead (timing.md)                                             */
 /* ------------------------------------------------------------------------ */
@@ -1118,6 +1172,7 @@ void bench_report_summaries(const bench_state *st, const bench_out *summary,
     bench_report_transmittance(st, summary);
     bench_report_breaks(st, summary);
     bench_report_expo(st, summary);
+    bench_report_cutoff(st, summary);
     bench_section(summary, "Per scene: the fewest evaluations to reach an error");
     bench_both(summary,
                "For each target, the smallest evaluation count of any method, warp and medium "
