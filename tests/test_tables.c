@@ -267,6 +267,50 @@ static void ad_gk_tables(void)
     }
 }
 
+/* The pairs' Legendre matrices (hrm__nodes_info.leg, computed by
+   hrm__nodes_legendre from each tableau's distinct nodes: the kink test,
+   hrm__pair_tail): applied to P_k at the nodes, row r gives 1 for r = k
+   and 0 for every other k < m (the interpolant of P_k is P_k), and the
+   Legendre coefficients of a polynomial of degree m - 1 given by its
+   values are its own. Bound: m terms of magnitude at most 4 (the
+   inverse's largest entry, 2.65) each to a few epsilons: double 1e-13;
+   float 64 m FLT_EPSILON 4. */
+static void ad_pair_legendre(void)
+{
+    static const int want_m[5] = {4, 6, 6, 6, 7}; /* distinct nodes */
+    double worst = 0, biggest = 0;
+    int p;
+    for (p = 0; p < 5; ++p) {
+        const hrm__tableau *tb = hrm__methods[HRM_BOGACKI_SHAMPINE + p].tb;
+        hrm__nodes_info ni;
+        int r, k, j;
+        hrm__nodes_init(tb, &ni);
+        CHECK_INT(ni.m, want_m[p], "%s: distinct nodes", hrm_method_name((hrm_method)(HRM_BOGACKI_SHAMPINE + p)));
+        for (r = 0; r < ni.m; ++r)
+            for (k = 0; k < ni.m; ++k) {
+                double v = 0;
+                if (fabs((double)ni.leg[r][k]) > biggest) biggest = fabs((double)ni.leg[r][k]);
+                for (j = 0; j < ni.m; ++j) {
+                    double x = 2 * (double)ni.c[j] - 1, p0 = 1, p1 = x, pk = k == 0 ? 1 : x;
+                    int q;
+                    for (q = 1; q < k; ++q) {
+                        pk = ((2 * q + 1) * x * p1 - q * p0) / (q + 1);
+                        p0 = p1;
+                        p1 = pk;
+                    }
+                    v += (double)ni.leg[r][j] * pk;
+                }
+                v = fabs(v - (r == k ? 1 : 0));
+                CHECK(v <= (real_is_float() ? 64.0 * ni.m * 4 * (double)FLT_EPSILON : 1e-13),
+                      "%s: Legendre row %d on P_%d off by %.3g",
+                      hrm_method_name((hrm_method)(HRM_BOGACKI_SHAMPINE + p)), r, k, v);
+                if (v > worst) worst = v;
+            }
+    }
+    CHECK(biggest <= 4, "the pairs' Legendre matrices: largest entry %.3g (the bound above assumes 4)", biggest);
+    NOTE("the pairs' Legendre matrices: worst %.3g, largest entry %.3g", worst, biggest);
+}
+
 /* ======================================================================== */
 
 /* The pairs' step limit in the RTE form (hrm__tableau.zmax): the
@@ -322,5 +366,6 @@ void table_tests(void)
 {
     RUN_GROUP(ad_tableaus);
     RUN_GROUP(ad_gk_tables);
+    RUN_GROUP(ad_pair_legendre);
     RUN_GROUP(ad_step_limit);
 }
