@@ -4791,8 +4791,8 @@ static HRM_DEVICE void hrm__gap_miss(const hrm_real *x, const hrm_real *r, const
    0), evaluations +5.6%, +4.0%, +1.1% (fog +4.7%, +3.9%, +0.2%); the
    bench's geometric mean +1.9% (Dormand-Prince), +1.6% (Cash-Karp), +1.4%
    (Fehlberg), -0.1% (Verner). Half their size as the miss cost
-   Dormand-Prince +12% (fog) to +14% (kinks); 1/8 as the threshold left
-   Verner 1 silent. */
+   Dormand-Prince +12% (fog) to +14% (kinks); with it, 1/8 as the
+   threshold left Verner 1 silent. */
 static HRM_DEVICE void hrm__pair_tail(const hrm__nodes_info *ni, const hrm_real *f, hrm_real h, hrm_real *em)
 {
     hrm_real a[HRM__MAX_STAGES], fm = 0, tail, body;
