@@ -61,9 +61,9 @@ check: $(BUILD)/check
 
 # The benchmark: measurement, reporting, figures and the command line, with
 # the scenes, the reference quadrature and the SVG writer (bench/README.md).
-BENCH_SRC = bench/main.c bench/measure.c bench/report.c bench/figures.c \
+BENCH_SRC = bench/main.c bench/measure.c bench/report.c bench/figures.c bench/qag.c \
             bench/scenes.c bench/reference.c bench/svg.c
-BENCH_HDR = bench/bench.h bench/scenes.h bench/reference.h bench/svg.h
+BENCH_HDR = bench/bench.h bench/scenes.h bench/reference.h bench/svg.h bench/qag.h
 
 $(BUILD)/bench: $(BENCH_SRC) $(BENCH_HDR) hrm.h
 	@mkdir -p $(BUILD)

@@ -28,6 +28,7 @@
 #define BENCH_FIT_FLOOR 1e-13     /* errors below this are round-off: not fitted */
 #define BENCH_PLOT_FLOOR 1e-16    /* errors below this are drawn at it */
 #define BENCH_REF_CHECK 1e-13L    /* a reference must be at least this accurate */
+#define BENCH_QAG_CHECK 1e-13     /* QAG's rule on the monomials it integrates exactly */
 #define BENCH_MAX_PARAMS 16
 #define BENCH_MAX_METHODS (HRM_METHOD_COUNT + 12)
 #define BENCH_MAX_SCENES 16
@@ -165,6 +166,15 @@ typedef struct bench_trans {
     bench_trans_row rows[BENCH_MAX_METHODS * BENCH_SECTION_PARAMS];
 } bench_trans;
 
+/* QUADPACK's QAG with the 15-point rule (qag.h), given each scene's
+   integrand with the exact Tr, over the adaptive methods' tolerances:
+   its evaluations and error (NaN where it stopped short of epsrel). */
+typedef struct bench_qag {
+    int n;
+    long evals[BENCH_MAX_PARAMS];
+    double err[BENCH_MAX_PARAMS];
+} bench_qag;
+
 /* Early ray termination on sigma callbacks: the thick scene and the
    cloud, no warp, each adaptive method at the section's tolerances,
    [0] without options.cutoff, [1] with BENCH_CUTOFF. */
@@ -257,6 +267,8 @@ typedef struct bench_state {
     bench_equi equi;
     bench_trans trans;
     bench_cut cut;
+    bench_qag qag[BENCH_MAX_SCENES];
+    double qag_check;        /* qag_rule_check(): its rule's worst error on exact monomials */
     bench_brk brk[BENCH_BRK_SCENES];
     bench_overhead overhead[2]; /* directional (constants), hetero (callbacks) */
 } bench_state;
@@ -300,6 +312,7 @@ void bench_run_scene(bench_state *st, int si);
 void bench_measure_equiangular(bench_state *st);
 void bench_measure_transmittance(bench_state *st);
 void bench_measure_cutoff(bench_state *st);
+void bench_measure_qag(bench_state *st);
 void bench_measure_breaks(bench_state *st);
 void bench_measure_overhead(bench_state *st); /* only when timed */
 

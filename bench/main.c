@@ -301,6 +301,7 @@ static int bench_run(bench_state *st)
     bench_measure_equiangular(st);
     bench_measure_transmittance(st);
     bench_measure_cutoff(st);
+    bench_measure_qag(st);
     bench_measure_breaks(st);
     bench_measure_overhead(st);
     if (!st->progress.tty)

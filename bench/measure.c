@@ -22,6 +22,7 @@
 #define _POSIX_C_SOURCE 200809L /* clock_gettime, isatty */
 #define HRM_IMPLEMENTATION
 #include "bench.h"
+#include "qag.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -762,6 +763,34 @@ void bench_measure_transmittance(bench_state *st)
                 r->status[col] = row.status;
                 if (col == 2) r->stats_c = row.stats;
             }
+        }
+    }
+}
+
+/* ------------------------------------------------------------------------ */
+/* A general-purpose quadrature: QUADPACK's QAG (GK15)                      */
+/* ------------------------------------------------------------------------ */
+
+void bench_measure_qag(bench_state *st)
+{
+    int si, k, c;
+    st->qag_check = qag_rule_check();
+    if (st->qag_check > BENCH_QAG_CHECK) st->ref_bad++;
+    for (si = 0; si < bench_scene_count; ++si) {
+        const bench_scene *sc = &bench_scenes[si];
+        const bench_reference *ref;
+        bench_qag *q = &st->qag[si];
+        q->n = 0;
+        if (!bench_scene_selected(&st->cfg, si)) continue;
+        ref = bench_reference_get(st, si);
+        for (k = 0; k < st->cfg.ntols; ++k) {
+            double out[HRM_CHANNELS];
+            hrm_real L[HRM_CHANNELS];
+            int ok;
+            q->evals[k] = qag_integrate(sc->integrand, sc->params, sc->t0, sc->t0, sc->t1, st->cfg.tols[k], out, &ok);
+            for (c = 0; c < HRM_CHANNELS; ++c) L[c] = (hrm_real)out[c];
+            q->err[k] = ok ? bench_rel_error(L, ref->L) : (double)NAN;
+            q->n++;
         }
     }
 }

@@ -934,24 +934,41 @@ static void bench_scene_heading(const bench_scene *sc, const bench_out *o)
     if (o->md) fprintf(o->md, "\n### %s\n\n%s.\n\n", sc->name, sc->description);
 }
 
+/* QAG's fewest evaluations on scene si from which its sweep stays within
+   target (as bench_reliable_from), into out; "-" where it never does. */
+static void bench_qag_fewest_text(const bench_state *st, int si, double target, char *out, size_t size)
+{
+    const bench_qag *q = &st->qag[si];
+    long best = -1;
+    int k = q->n;
+    while (k > 0 && q->err[k - 1] <= target) --k;
+    for (; k < q->n; ++k)
+        if (best < 0 || q->evals[k] < best) best = q->evals[k];
+    if (best < 0) snprintf(out, size, "-");
+    else snprintf(out, size, "%ld", best);
+}
+
 static void bench_report_scene_summary(const bench_state *st, int si, const bench_out *o)
 {
     const bench_scene *sc = &bench_scenes[si];
-    char label[160];
+    char label[160], qtext[24];
     bench_table t;
     int tg, mi, w, k, nc = 1;
     bench_scene_heading(sc, o);
-    bench_table_init(&t, 4);
+    bench_table_init(&t, 5);
     bench_table_row(&t);
     bench_table_cell(&t, 0, "rel. error");
     bench_table_cell(&t, 1, "fewest evals");
     bench_table_cell(&t, 2, "its medium evals");
     bench_table_cell(&t, 3, "method, warp%s (N or rtol)",
                      bench_scene_nmedia(st, si) > 1 ? ", medium" : "");
+    bench_table_cell(&t, 4, "QUADPACK QAG (GK15), exact Tr");
     for (tg = 0; tg < BENCH_TARGETS; ++tg) {
         const bench_row *be = bench_best_row(st, si, bench_targets[tg], 0);
         bench_table_row(&t);
         bench_table_cell(&t, 0, "%.0e", bench_targets[tg]);
+        bench_qag_fewest_text(st, si, bench_targets[tg], qtext, sizeof qtext);
+        bench_table_cell(&t, 4, "%s", qtext);
         if (!be) {
             bench_table_cell(&t, 1, "not reached");
             continue;
@@ -1178,7 +1195,11 @@ void bench_report_summaries(const bench_state *st, const bench_out *summary,
                "For each target, the smallest evaluation count of any method, warp and medium "
                "whose sweep stays at or below the target from that N or rtol on (a lucky single "
                "N does not count). N doubles and rtol moves by decades, so a count is within a "
-               "factor of about 2 (fixed-step) of the least that would do. Fitted orders: over "
+               "factor of about 2 (fixed-step) of the least that would do. Beside it, a "
+               "general-purpose quadrature: QUADPACK's QAG with the 15-point Gauss-Kronrod rule "
+               "(GSL's gsl_integration_qag, written in bench/qag.c), given the scene's integrand "
+               "with the exact Tr and nothing else, over the same rtol ladder as epsrel (vector "
+               "form: one evaluation gives every channel). Fitted orders: over "
                "the whole sweep, in parentheses its finest %d points.\n",
                BENCH_TAIL);
     for (si = 0; si < bench_scene_count; ++si)
@@ -1209,7 +1230,8 @@ void bench_report_footer(const bench_state *st, int files, double seconds)
     printf("\nevaluation counts: hrm's stats %s the callbacks made in %ld solves",
            st->count_mismatches ? "disagree with" : "match", st->solves);
     if (st->count_mismatches) printf(" (%ld mismatches, see stderr)", st->count_mismatches);
-    printf("\nreferences below the accuracy check (%.0Le): %d\n", BENCH_REF_CHECK, st->ref_bad);
+    printf("\nreferences below the accuracy check (%.0Le): %d (QAG's rule on exact monomials: %.1e, at most %.0e)\n",
+           BENCH_REF_CHECK, st->ref_bad, st->qag_check, BENCH_QAG_CHECK);
     printf("rows with an error status: %d\n", st->errors);
     printf("wrote %s/bench.csv (%d rows), summary.md, %s%d SVG figures\n", st->cfg.out_dir,
            st->nrows, st->cfg.timed ? "timing.md and " : "", files);
