@@ -24,6 +24,7 @@ static const double wg[4] = {0.129484966168869693270611432679082, 0.279705391489
 typedef struct qag_iv {
     double a, b;
     double r[HRM_CHANNELS], e[HRM_CHANNELS]; /* the rule's integral and error estimate */
+    int sat[HRM_CHANNELS]; /* the estimate is resasc itself (saturated) */
 } qag_iv;
 
 static void qag_f(ref_integrand_fn f, const void *params, double t0, double s, double out[HRM_CHANNELS])
@@ -73,6 +74,7 @@ static void qag_rule(ref_integrand_fn f, const void *params, double t0, qag_iv *
             double scale = pow(200 * err / resasc[c], 1.5);
             err = scale < 1 ? resasc[c] * scale : resasc[c];
         }
+        v->sat[c] = err == resasc[c];
         if (resabs[c] > DBL_MIN / (50 * DBL_EPSILON) && err < 50 * DBL_EPSILON * resabs[c])
             err = 50 * DBL_EPSILON * resabs[c];
         v->e[c] = err;
@@ -105,6 +107,10 @@ long qag_integrate(ref_integrand_fn f, const void *params, double t0, double a, 
                 err[c] += iv[i].e[c];
             }
             done &= err[c] <= epsrel * fabs(area[c]);
+            /* the first rule alone is not trusted where its estimate is
+               resasc itself (QUADPACK's first test: abserr != resasc, or
+               abserr 0) */
+            if (n == 1 && iv[0].sat[c] && iv[0].e[c] != 0) done = 0;
         }
         if (done) break;
         if (n == QAG_LIMIT) {
