@@ -516,6 +516,31 @@ static hrm_result br_scan_cost(hrm_method method, double rtol, int warp, hrm_spe
     return r;
 }
 
+/* The medium (sa, ss) of scene s lit by Li = 1, and the options of an
+   adaptive method (gk: Gauss-Kronrod's form, 0 K15, 1 K7, 2 local K15) at
+   rtol, warp w (0 none, 1 distance, 2 equiangular towards a light 0.5
+   from the ray at 7); its name. */
+static const char *br_adaptive_setup(br_scene *s, hrm_spectrum_fn sa, hrm_spectrum_fn ss, hrm_method method,
+                                     int gk, int w, double rtol, hrm_medium *m, hrm_options *o)
+{
+    memset(m, 0, sizeof *m);
+    m->user = s;
+    m->sigma_a = sa;
+    m->sigma_s = ss;
+    m->Li = br_one;
+    *o = hrm_default_options(method);
+    o->rtol = (hrm_real)rtol;
+    if (gk == 1) o->gk_rule = HRM_GK_K7;
+    if (gk == 2) o->gk_mode = HRM_GK_LOCAL;
+    if (w == 1) o->warp.kind = HRM_WARP_DISTANCE;
+    if (w == 2) {
+        o->warp.kind = HRM_WARP_EQUIANGULAR;
+        o->warp.delta = (hrm_real)7;
+        o->warp.D = (hrm_real)0.5;
+    }
+    return gk == 1 ? "gauss-kronrod K7" : gk == 2 ? "gauss-kronrod local" : hrm_method_name(method);
+}
+
 static void br_scan(void)
 {
     static const hrm_method ms[] = {HRM_NESTED_SIMPSON, HRM_GAUSS_KRONROD, HRM_BOGACKI_SHAMPINE,
@@ -529,31 +554,16 @@ static void br_scan(void)
                 for (w = 0; w < 3; ++w) {
                     br_scene s;
                     hrm_medium m;
-                    hrm_options o = hrm_default_options(ms[mi]);
+                    hrm_options o;
                     hrm_result r;
                     double L_want, Tr_want, loc = 0;
-                    const char *name = gk == 1 ? "gauss-kronrod K7" : gk == 2 ? "gauss-kronrod local"
-                                                                            : hrm_method_name(ms[mi]);
+                    const char *name = br_adaptive_setup(&s, br_slab_a, br_slab_s, ms[mi], gk, w, rtol, &m, &o);
                     int j;
                     s.lo = slabs[si][0];
                     s.hi = slabs[si][1];
                     s.calls = 0;
                     L_want = br_slab_L(s.lo, s.hi);
                     Tr_want = exp(-(0.05 * (10 - (s.hi - s.lo)) + 5 * (s.hi - s.lo)));
-                    memset(&m, 0, sizeof m);
-                    m.user = &s;
-                    m.sigma_a = br_slab_a;
-                    m.sigma_s = br_slab_s;
-                    m.Li = br_one;
-                    o.rtol = (hrm_real)rtol;
-                    if (gk == 1) o.gk_rule = HRM_GK_K7;
-                    if (gk == 2) o.gk_mode = HRM_GK_LOCAL;
-                    if (w == 1) o.warp.kind = HRM_WARP_DISTANCE;
-                    if (w == 2) {
-                        o.warp.kind = HRM_WARP_EQUIANGULAR;
-                        o.warp.delta = (hrm_real)7;
-                        o.warp.D = (hrm_real)0.5;
-                    }
                     CHECK_INT(hrm_solve(&m, 0, 10, &o, &r), HRM_OK, "slab [%g, %g], %s, warp %d: status",
                               s.lo, s.hi, name, w);
                     CHECK_INT(r.njumps, 2, "slab [%g, %g], %s, warp %d: both faces found", s.lo, s.hi,
@@ -659,25 +669,12 @@ static void br_feature(void)
     int mi, w, gk, si, c;
     for (mi = 0; mi < 7; ++mi)
         for (gk = 0; gk < (ms[mi] == HRM_GAUSS_KRONROD ? 3 : 1); ++gk)
-            for (w = 0; w < 2; ++w) {
+            for (w = 0; w < 3; w += 2) {
                 br_scene s = {0, 0, 0};
                 hrm_medium m;
-                hrm_options o = hrm_default_options(ms[mi]);
+                hrm_options o;
                 hrm_result r, r0;
-                const char *name = gk == 1 ? "gauss-kronrod K7" : gk == 2 ? "gauss-kronrod local" : hrm_method_name(ms[mi]);
-                memset(&m, 0, sizeof m);
-                m.user = &s;
-                m.sigma_a = br_sa;
-                m.sigma_s = br_ss;
-                m.Li = br_one;
-                o.rtol = (hrm_real)rtol;
-                if (gk == 1) o.gk_rule = HRM_GK_K7;
-                if (gk == 2) o.gk_mode = HRM_GK_LOCAL;
-                if (w) {
-                    o.warp.kind = HRM_WARP_EQUIANGULAR;
-                    o.warp.delta = (hrm_real)7;
-                    o.warp.D = (hrm_real)0.5;
-                }
+                const char *name = br_adaptive_setup(&s, br_sa, br_ss, ms[mi], gk, w, rtol, &m, &o);
                 CHECK_INT(hrm_solve(&m, 0, 10, &o, &r0), HRM_OK, "constant, %s, warp %d, feature 0: status", name, w);
                 CHECK(r0.stats.medium_evals <= r0.stats.evals + 33,
                       "constant, %s, warp %d, feature 0: %ld medium calls for %ld evaluations (33 more at most)",
