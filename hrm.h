@@ -1556,6 +1556,9 @@ typedef struct hrm__ctx {
     hrm_real cut_at;           /* where it cut (offset; 0: nowhere) */
     int keep_layer;            /* hrm__setup on a ray cut by the scan: the
                                   layer keeps what the scan taught it */
+    int end_have[2];           /* sigma_a and sigma_s at t0 and t1 kept */
+    hrm_real end_sa[2][HRM__CH], end_ss[2][HRM__CH]; /* from their first
+                                  lookup (hrm__coeffs) */
     int expo;                  /* exponentially fitted rules */
     int tau_from_tr;           /* tau at nodes is -ln of the transmittance
                                   callback's Tr: capped where it underflows */
@@ -1688,9 +1691,24 @@ static HRM_DEVICE int hrm__coeffs(hrm__ctx *c, hrm_real s, int want_sa, int want
 {
     const hrm_medium *m = c->m;
     int i, called = 0, derive_st = want_st && !m->sigma_t;
+    /* the ray's ends: the scan, the layer and the rules' end nodes all
+       sample there, one lookup serves them (not with a sigma_t callback,
+       whose value is no sum of these) */
+    int end = m->sigma_t ? -1 : s == c->t0 ? 0 : s == c->t1 ? 1 : -1;
+    int both = want_st || (want_sa && want_ss); /* what a lookup keeps: both
+                                  asked for (as every form of the medium
+                                  then calls for both) */
     hrm__fill(sa, HRM__CH, 0);
     hrm__fill(ss, HRM__CH, 0);
     hrm__fill(st, HRM__CH, 0);
+    if (end >= 0 && c->end_have[end] && (want_sa || want_ss || want_st)) {
+        for (i = 0; i < HRM__CH; ++i) {
+            if (want_sa || want_st) sa[i] = c->end_sa[end][i];
+            if (want_ss || want_st) ss[i] = c->end_ss[end][i];
+            if (want_st) st[i] = c->end_sa[end][i] + c->end_ss[end][i];
+        }
+        return 0;
+    }
     if (m->sigma) {
         /* both coefficients from one call, sigma_t their sum; one that is
            not wanted reads as zero, as where it has its own callback */
@@ -1698,6 +1716,11 @@ static HRM_DEVICE int hrm__coeffs(hrm__ctx *c, hrm_real s, int want_sa, int want
         m->sigma(m->user, s, sa, ss);
         hrm__check(c, sa, 1);
         hrm__check(c, ss, 1);
+        if (end >= 0 && both && c->status == HRM_OK) {
+            c->end_have[end] = 1;
+            memcpy(c->end_sa[end], sa, sizeof c->end_sa[end]);
+            memcpy(c->end_ss[end], ss, sizeof c->end_ss[end]);
+        }
         for (i = 0; i < HRM__CH; ++i) {
             if (want_st) st[i] = sa[i] + ss[i];
             if (!want_sa && !want_st) sa[i] = 0;
@@ -1714,6 +1737,11 @@ static HRM_DEVICE int hrm__coeffs(hrm__ctx *c, hrm_real s, int want_sa, int want
         m->sigma_s(m->user, s, ss);
         hrm__check(c, ss, 1);
         called = 1;
+    }
+    if (end >= 0 && both && c->status == HRM_OK) { /* (both called, or absent) */
+        c->end_have[end] = 1;
+        memcpy(c->end_sa[end], sa, sizeof c->end_sa[end]);
+        memcpy(c->end_ss[end], ss, sizeof c->end_ss[end]);
     }
     if (want_st && m->sigma_t) {
         if (c->status == HRM_OK) {

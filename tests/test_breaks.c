@@ -654,8 +654,11 @@ static void br_scan(void)
    equiangular warp of a light 0.5 from the ray at 7:
    - a constant medium (sigma_a 0.1, sigma_s 0.4 through callbacks) with
      feature 10 (the ray's length): one panel, its 9 samples the whole
-     cost beyond the source's nodes (33 with feature 0, 4 panels); L =
-     0.8 (1 - e^-5) within 3 rtol with HRM_OK;
+     cost beyond the source's nodes, less the ray's two ends, whose
+     lookups the rules' end nodes share (hrm__coeffs): 7 more lookups
+     than evaluations, at most 8 asserted (issue 22's target); with
+     feature 0, 4 panels, 33 samples: 31 more; L = 0.8 (1 - e^-5) within
+     3 rtol with HRM_OK;
    - slabs of br_scan with feature their width: both faces found between
      samples no farther apart than it (3 and 6 panels), L within 3 rtol.
    The distance warp's reach march adds its own panel (9 samples) to both,
@@ -676,13 +679,13 @@ static void br_feature(void)
                 hrm_result r, r0;
                 const char *name = br_adaptive_setup(&s, br_sa, br_ss, ms[mi], gk, w, rtol, &m, &o);
                 CHECK_INT(hrm_solve(&m, 0, 10, &o, &r0), HRM_OK, "constant, %s, warp %d, feature 0: status", name, w);
-                CHECK(r0.stats.medium_evals <= r0.stats.evals + 33,
-                      "constant, %s, warp %d, feature 0: %ld medium calls for %ld evaluations (33 more at most)",
+                CHECK(r0.stats.medium_evals <= r0.stats.evals + 31,
+                      "constant, %s, warp %d, feature 0: %ld medium calls for %ld evaluations (31 more at most)",
                       name, w, r0.stats.medium_evals, r0.stats.evals);
                 m.feature = 10;
                 CHECK_INT(hrm_solve(&m, 0, 10, &o, &r), HRM_OK, "constant, %s, warp %d, feature 10: status", name, w);
-                CHECK(r.stats.medium_evals <= r.stats.evals + 9,
-                      "constant, %s, warp %d, feature 10: %ld medium calls for %ld evaluations (9 more at most)",
+                CHECK(r.stats.medium_evals <= r.stats.evals + 8,
+                      "constant, %s, warp %d, feature 10: %ld medium calls for %ld evaluations (8 more at most)",
                       name, w, r.stats.medium_evals, r.stats.evals);
                 for (c = 0; c < NCH; ++c)
                     CHECK_REL(r.L[c], 0.8 * -expm1(-5.0), 3 * rtol, "constant, %s, warp %d, feature 10: L", name, w);
