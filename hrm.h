@@ -338,12 +338,12 @@
    estimate until the estimates add up to the tolerance of the current
    total (past their storage: the rest left to right); the pairs and local
    Gauss-Kronrod give a step atol f + rtol max(|dL|, f |L|), f its share.
-   Each estimate is of the value returned (nested Simpson's |S2 - S1|, at
-   least the 4th difference its 3rd and 2nd predict; Gauss-Kronrod's |K -
-   G|, where its nodes' top Legendre coefficients stop falling (a kink) at
-   least half them; each scaled once splits show its rate and samples look
-   resolved, but a kink's; the pairs' embedded estimate and stage values'
-   Newton series, the larger), raised where nodes miss the layer's 1 - Tr
+   Each estimate is of the value returned (nested Simpson's |S2 - S1|, at least
+   the 4th difference its 3rd and 2nd predict; Gauss-Kronrod's |K - G|; the
+   pairs' embedded estimate, or stage values' Newton series if larger; at least
+   1/2 (Gauss-Kronrod) or 1/4 (pairs) of the nodes' top Legendre coefficients
+   that stop falling, a kink; scaled once splits show its rate and samples look
+   resolved, but a kink's), raised where nodes miss the layer's 1 - Tr
    (decoupled tau), a pair's neighbours lie 20 times apart (both > 0, or > 1
    optical depth), others' 8 (nested Simpson's 6; no fit: half the gap). An
    interval whose error does not shrink may take rtol/16 of |L|, 16 times a
