@@ -1,6 +1,7 @@
 /* fuzz.c - the fuzz harness of hrm.h: bytes decoded into a medium
    (constants or callbacks, whose outputs come from the bytes too, NaN and
-   infinities included), an interval, options, a warp and breakpoints; one
+   infinities included), an interval, options (an opacity cut-off and the
+   medium's feature among them), a warp and breakpoints; one
    hrm_solve (and, for some inputs, hrm_transmittance) checked against the
    manual's promises. A broken promise aborts, which libFuzzer reports as a
    crash with the input that caused it.
@@ -250,6 +251,12 @@ static int fz_run(const uint8_t *data, size_t size)
         o.breaks = breaks;
         o.nbreaks = k;
     }
+    /* an opacity cut-off and the medium's feature (a byte that reads 0,
+       past the input's end, leaves both unset) */
+    k = (int)fz_byte(&rd);
+    if (k % 4 == 1) o.cutoff = (hrm_real)(k & 4 ? fz_num(&rd) : pow(10.0, -(double)(fz_byte(&rd) % 8)));
+    k = (int)fz_byte(&rd);
+    if (k % 4 == 1) m.feature = (hrm_real)(k & 4 ? fz_num(&rd) : T / (1 + fz_byte(&rd) % 64));
 
     memset(&g, 0xA5, sizeof g);
     fm.calls = fm.outside = 0;
@@ -259,11 +266,11 @@ static int fz_run(const uint8_t *data, size_t size)
     if (getenv("FUZZ_VERBOSE"))
         printf("method %d form %d warp %d (sigma_ref %g D %g) t0 %g T %g flags %#x steps %d rtol %g atol %g "
                "h_min %g h_max %g tau_mode %d find_jumps %d exponential %d nbreaks %d: sa %g ss %g le %g li %g "
-               "D2 %g bad_after %d -> status %d L %g Tr %g\n",
+               "D2 %g bad_after %d cutoff %g feature %g -> status %d L %g Tr %g\n",
                (int)o.method, (int)o.form, (int)o.warp.kind, (double)o.warp.sigma_ref, (double)o.warp.D, t0, T,
                flags, o.steps, (double)o.rtol, (double)o.atol, (double)o.h_min, (double)o.h_max, (int)o.tau_mode,
                o.find_jumps, o.exponential, o.nbreaks, fm.sa[0], fm.ss[0], fm.le[0], fm.li[0], fm.D2, fm.bad_after,
-               (int)s, (double)g.r.L[0], (double)g.r.Tr[0]);
+               (double)o.cutoff, (double)m.feature, (int)s, (double)g.r.L[0], (double)g.r.Tr[0]);
     if (strcmp(hrm_status_string(s), "unknown status") == 0) return printf("unknown status %d\n", (int)s), 1;
     for (k = 0; k < 64; ++k)
         if (g.before[k] != 0xA5 || g.after[k] != 0xA5) return printf("wrote outside the result\n"), 2;
