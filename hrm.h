@@ -837,11 +837,11 @@ HRM_API HRM_DEVICE size_t hrm_workspace_size(const hrm_options *options);
    the cut-off, Tr the whole ray's, the estimate Tr(t0, t_cut) - Tr(t0,
    t1) times the mean S / sigma_t of the part solved. With sigma
    callbacks, where the medium scan runs and tau comes from the
-   transmittance layer (the adaptive methods' default; not under the
-   distance warp): t_cut the scan's first sample where its trapezoid tau
-   passes ln(1 / cutoff) in every channel, Tr = Tr(t0, t_cut) (the whole
-   ray's is at most it), the estimate that Tr times the largest S /
-   sigma_t sampled (at least the mean); elsewhere no cut.
+   transmittance layer (the adaptive methods' default; the distance warp
+   keeps the whole ray's sigma_ref): t_cut the scan's first sample where
+   its trapezoid tau passes ln(1 / cutoff) in every channel, Tr = Tr(t0,
+   t_cut) (the whole ray's is at most it), the estimate that Tr times the
+   largest S / sigma_t sampled (at least the mean); elsewhere no cut.
    Returns HRM_OK, a warning (result holds the best estimate) or an error
    (result holds L = 0, Tr = 1, and the stats counted so far). */
 HRM_API HRM_DEVICE hrm_status hrm_solve(const hrm_medium *medium, hrm_real t0, hrm_real t1,
@@ -8196,6 +8196,9 @@ static HRM_DEVICE HRM__NOINLINE hrm_status hrm__cut_ray(hrm__job *j, hrm__ctx *c
     int nbrk = c->nbrk, njumps = c->njumps, k;
     memcpy(brk, c->brk_off, sizeof brk);
     memcpy(jumps, c->jumps, sizeof jumps);
+    /* the distance warp keeps its sigma_ref (its reach, marched on the
+       layer, would clear what the scan taught it) */
+    if (c->warp == HRM_WARP_DISTANCE) j->o.warp.sigma_ref = c->w_sigma;
     memset(c, 0, sizeof *c);
     c->ns = (hrm__ns_store *)j->at[3];
     c->gks = (hrm__gk_store *)j->at[4];
@@ -8249,9 +8252,9 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE hrm_status hrm__solve_job(hrm__job *j,
         return c->warning;
     }
     /* options.cutoff on sigma callbacks: the scan's trapezoid tau says
-       where (a solve on the layer; the distance warp's reach marches it
-       beforehand, and ends the ray where Tr < eps / 2 itself) */
-    if (o->cutoff > 0 && c->decoupled && !j->tr_only && c->warp != HRM_WARP_DISTANCE && HRM__FINITE(t1))
+       where (a solve on the layer; the warp the one asked for, not a
+       fallback) */
+    if (o->cutoff > 0 && c->decoupled && !j->tr_only && c->warp == o->warp.kind && HRM__FINITE(t1))
         c->cut_tau = -HRM_LOG(o->cutoff);
     if (c->scan && !(c->closed && !c->decoupled && !c->use_le && !c->use_li)) hrm__scan_medium(c);
     if (c->status == HRM_OK && c->cut_at > 0) {
