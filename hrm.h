@@ -4802,29 +4802,28 @@ static HRM_DEVICE void hrm__gap_miss(const hrm_real *x, const hrm_real *r, const
     }
 }
 
-/* A pair's step over a kink (an Li whose slope jumps between its nodes):
-   the embedded estimate, another rule through the same nodes, can agree
-   by chance (Dormand-Prince's widest gap, 0.3 to 0.8 of the step: a knot
-   at 0.62 of it, estimate 0.63 rtol, error 22 rtol, HRM_OK). The
-   polynomial through the nodes then stops converging: in Legendre's basis
-   on the step, its top two coefficients keep more than 1/16 of the two
-   below them, where a smooth integrand's fall by more (an exponential
-   over a step of 1.5 decay lengths: 1/64; over that kink: 1/7). There a
-   quarter of their size over the step, |h| max(|a_m-1|, |a_m-2|) / 4, is
-   a miss (em, where larger; where the estimate already holds it, as on a
-   steep smooth step, nothing changes), above 64 epsilons of the values.
-   Pairs of 6 distinct nodes or more (not Bogacki-Shampine's 4); not on a
-   step within twice h_min, which cannot shrink and is judged by the jump's
-   share without it (a shadow's edge in float with one channel at rtol
-   3e-5: the pairs warned HRM_WARN_H_MIN there with it). Measured
-   on bench/sweep.c: silent of 4000 kinks rays Dormand-Prince 21 -> 0,
-   Cash-Karp 4 -> 0, Verner 5 -> 0 (lights: Dormand-Prince and Verner 1 ->
-   0), evaluations +5.6%, +4.0%, +1.1% (fog +4.7%, +3.9%, +0.2%; lights
-   +4.0%, +1.2%, 0%); the
-   bench's geometric mean +1.9% (Dormand-Prince), +1.6% (Cash-Karp), +1.4%
+/* A pair's step over a kink (an Li whose slope jumps between its nodes): the
+   embedded estimate, another rule through the same nodes, can agree by
+   chance (Dormand-Prince's widest gap, 0.3 to 0.8 of the step: a knot at
+   0.62 of it, estimate 0.63 rtol, error 22 rtol, HRM_OK). The polynomial
+   through the nodes then stops converging: in Legendre's basis on the step,
+   its top two coefficients keep more than 1/16 of the two below them, where
+   a smooth integrand's fall by more (an exponential over a step of 1.5 decay
+   lengths: 1/64; over that kink: 1/7). There a quarter of their size over
+   the step, |h| max(|a_m-1|, |a_m-2|) / 4, is a miss (em, where larger;
+   where the estimate already holds it, as on a steep smooth step, nothing
+   changes), above 64 epsilons of the values. Pairs of 6 distinct nodes or
+   more (not Bogacki-Shampine's 4); not on a step within twice h_min, which
+   cannot shrink and is judged by the jump's share without it (a shadow's
+   edge in float with one channel at rtol 3e-5: the pairs warned
+   HRM_WARN_H_MIN there with it). Measured on bench/sweep.c: silent of 4000
+   kinks rays Dormand-Prince 21 -> 0, Cash-Karp 4 -> 0, Verner 5 -> 0
+   (lights: Dormand-Prince and Verner 1 -> 0), evaluations +5.6%, +4.0%,
+   +1.1% (fog +4.7%, +3.9%, +0.2%; lights +4.0%, +1.2%, 0%); the bench's
+   geometric mean +1.9% (Dormand-Prince), +1.6% (Cash-Karp), +1.4%
    (Fehlberg), -0.1% (Verner). Half their size as the miss cost
-   Dormand-Prince +12% (fog) to +14% (kinks); with it, 1/8 as the
-   threshold left Verner 1 silent. */
+   Dormand-Prince +12% (fog) to +14% (kinks); with it, 1/8 as the threshold
+   left Verner 1 silent. */
 static HRM_DEVICE void hrm__pair_tail(const hrm__nodes_info *ni, const hrm_real *f, hrm_real h, hrm_real *em)
 {
     hrm_real a[HRM__MAX_STAGES], fm = 0, tail, body;
@@ -4838,7 +4837,8 @@ static HRM_DEVICE void hrm__pair_tail(const hrm__nodes_info *ni, const hrm_real 
         if (HRM_FABS(f[j]) > fm) fm = HRM_FABS(f[j]);
     tail = HRM_FABS(a[m - 1]) > HRM_FABS(a[m - 2]) ? HRM_FABS(a[m - 1]) : HRM_FABS(a[m - 2]);
     body = HRM_FABS(a[m - 3]) > HRM_FABS(a[m - 4]) ? HRM_FABS(a[m - 3]) : HRM_FABS(a[m - 4]);
-    if (tail > body / 16 && tail > 64 * HRM__EPS * fm && HRM_FABS(h) * tail / 4 > *em) *em = HRM_FABS(h) * tail / 4;
+    if (tail > body / 16 && tail > 64 * HRM__EPS * fm && HRM_FABS(h) * tail / 4 > *em)
+        *em = HRM_FABS(h) * tail / 4;
 }
 
 /* The quadrature form of a step (see hrm__nodes_info): the distinct nodes
