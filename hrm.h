@@ -839,9 +839,11 @@ HRM_API HRM_DEVICE size_t hrm_workspace_size(const hrm_options *options);
    callbacks, where the medium scan runs and tau comes from the
    transmittance layer (the adaptive methods' default; the distance warp
    keeps the whole ray's sigma_ref): t_cut the scan's first sample where
-   its trapezoid tau passes ln(1 / cutoff) in every channel, Tr = Tr(t0,
-   t_cut) (the whole ray's is at most it), the estimate that Tr times the
-   largest S / sigma_t sampled (at least the mean); elsewhere no cut.
+   its trapezoid tau passes ln(1 / cutoff) in every channel (a medium that
+   varies faster than the scan's spacing can leave Tr there above the
+   cut-off), Tr = Tr(t0, t_cut) (the whole ray's is at most it), the
+   estimate that Tr times the largest S / sigma_t sampled (at least the
+   mean: a source that peaks behind t_cut is not seen); elsewhere no cut.
    Returns HRM_OK, a warning (result holds the best estimate) or an error
    (result holds L = 0, Tr = 1, and the stats counted so far). */
 HRM_API HRM_DEVICE hrm_status hrm_solve(const hrm_medium *medium, hrm_real t0, hrm_real t1,
