@@ -843,7 +843,9 @@ HRM_API HRM_DEVICE size_t hrm_workspace_size(const hrm_options *options);
    varies faster than the scan's spacing can leave Tr there above the
    cut-off), Tr = Tr(t0, t_cut) (the whole ray's is at most it), the
    estimate that Tr times the largest S / sigma_t sampled (at least the
-   mean: a source that peaks behind t_cut is not seen); elsewhere no cut.
+   mean; the equiangular warp's light foot, where behind t_cut, sampled
+   once for it; another source peaking behind t_cut is not seen);
+   elsewhere no cut.
    Returns HRM_OK, a warning (result holds the best estimate) or an error
    (result holds L = 0, Tr = 1, and the stats counted so far). */
 HRM_API HRM_DEVICE hrm_status hrm_solve(const hrm_medium *medium, hrm_real t0, hrm_real t1,
@@ -8221,6 +8223,24 @@ static HRM_DEVICE HRM__NOINLINE hrm_status hrm__cut_ray(hrm__job *j, hrm__ctx *c
     return HRM_OK;
 }
 
+/* A ray cut by options.cutoff before the equiangular warp's light foot:
+   the source there, sampled once (one evaluation, one lookup), so that
+   the remainder's estimate holds the light's peak, which the solve never
+   came near (a light 1 from the ray 7 past t_cut: the estimate 2.1 times
+   short of the remainder without it, 1.0e-5 against 2.1e-5). A callback's bad value there leaves
+   the solve's answer as it was. */
+static HRM_DEVICE void hrm__cut_foot(hrm__ctx *c, hrm_real s)
+{
+    hrm_real sa[HRM__CH], ss[HRM__CH], st[HRM__CH], q[HRM__CH], keep[HRM__CH];
+    memcpy(keep, c->src_max, sizeof keep);
+    c->stats.medium_evals += hrm__coeffs(c, s, 1, 1, 1, sa, ss, st);
+    hrm__source(c, s, sa, ss, st, q);
+    if (c->status != HRM_OK) {
+        c->status = HRM_OK;
+        memcpy(c->src_max, keep, sizeof keep);
+    }
+}
+
 /* The solve itself, once its storage is held (c: its context, in the
    caller's workspace or the frame of hrm__solve_local). */
 static HRM_DEVICE HRM__CALL HRM__NOINLINE hrm_status hrm__solve_job(hrm__job *j, hrm__ctx *c)
@@ -8272,6 +8292,9 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE hrm_status hrm__solve_job(hrm__job *j,
         hrm__dispatch(c, o, y);
     }
     st = hrm__finish(c, o, y, j->L, j->Tr, j->err);
+    if (c->keep_layer && st >= 0 && o->warp.kind == HRM_WARP_EQUIANGULAR && o->warp.delta > c->t1 &&
+        o->warp.delta < j->t1 && c->status == HRM_OK)
+        hrm__cut_foot(c, o->warp.delta);
     for (k = 0; k < HRM__CH && c->keep_layer && st >= 0; ++k) {
         /* cut by options.cutoff: what lies past t_cut, estimated with the
            largest S / sigma_t the solve sampled (at least its mean, L /
