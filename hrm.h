@@ -1687,6 +1687,16 @@ static HRM_DEVICE void hrm__state_check(hrm__ctx *c, const hrm_real *y, int n)
         if (!(HRM_FABS(y[i]) <= lim) && c->status == HRM_OK) c->status = HRM_ERR_RANGE;
 }
 
+/* sigma_a and sigma_s at the ray's end `end` (0: t0, 1: t1) kept for
+   the lookups there to come (hrm__coeffs), unless a callback failed. */
+static HRM_DEVICE void hrm__end_keep(hrm__ctx *c, int end, const hrm_real sa[HRM__CH], const hrm_real ss[HRM__CH])
+{
+    if (c->status != HRM_OK) return;
+    c->end_have[end] = 1;
+    memcpy(c->end_sa[end], sa, sizeof c->end_sa[end]);
+    memcpy(c->end_ss[end], ss, sizeof c->end_ss[end]);
+}
+
 /* The sigma callbacks at s, those that are wanted and present (absent ones
    are zero; sigma_t defaults to sigma_a + sigma_s), validated. Returns
    whether any was called (one medium evaluation). */
@@ -1720,11 +1730,7 @@ static HRM_DEVICE int hrm__coeffs(hrm__ctx *c, hrm_real s, int want_sa, int want
         m->sigma(m->user, s, sa, ss);
         hrm__check(c, sa, 1);
         hrm__check(c, ss, 1);
-        if (end >= 0 && both && c->status == HRM_OK) {
-            c->end_have[end] = 1;
-            memcpy(c->end_sa[end], sa, sizeof c->end_sa[end]);
-            memcpy(c->end_ss[end], ss, sizeof c->end_ss[end]);
-        }
+        if (end >= 0 && both) hrm__end_keep(c, end, sa, ss);
         for (i = 0; i < HRM__CH; ++i) {
             if (want_st) st[i] = sa[i] + ss[i];
             if (!want_sa && !want_st) sa[i] = 0;
@@ -1742,11 +1748,7 @@ static HRM_DEVICE int hrm__coeffs(hrm__ctx *c, hrm_real s, int want_sa, int want
         hrm__check(c, ss, 1);
         called = 1;
     }
-    if (end >= 0 && both && c->status == HRM_OK) { /* (both called, or absent) */
-        c->end_have[end] = 1;
-        memcpy(c->end_sa[end], sa, sizeof c->end_sa[end]);
-        memcpy(c->end_ss[end], ss, sizeof c->end_ss[end]);
-    }
+    if (end >= 0 && both) hrm__end_keep(c, end, sa, ss); /* (both called, or absent) */
     if (want_st && m->sigma_t) {
         if (c->status == HRM_OK) {
             m->sigma_t(m->user, s, st);
@@ -4026,19 +4028,19 @@ static HRM_DEVICE hrm_real hrm__phi1(hrm_real x)
 
 static HRM_DEVICE void hrm__warn(hrm__ctx *c, hrm_status w);
 
-/* The fit on nodes y[0..n) (ascending, in [-1, 1]): the Legendre
-   Vandermonde matrix V[j][k] = P_k(y_j) inverted by Gauss-Jordan with
-   partial pivoting (n <= 15; near-Gauss nodes keep it well conditioned).
-   The identity it is augmented with, which becomes the inverse, is F->A
-   itself: V alone in the frame. */
-static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__efit_init(hrm__efit *F, const hrm_real *y, int n)
+/* The inverse of the Legendre Vandermonde matrix V[j][k] = P_k(y_j) of
+   nodes y[0..n) (ascending, in [-1, 1]) by Gauss-Jordan with partial
+   pivoting (n <= 15; near-Gauss nodes, and a pair's at most 8, keep it
+   well conditioned), into I (row k: P_k's coefficient in each node's
+   Lagrange polynomial, so that sum_j I[k][j] f_j is the k-th Legendre
+   coefficient of the polynomial through f). V and I are n x n arrays of
+   row length ld; V is overwritten. The exponential fits (hrm__efit_init)
+   and the pairs' kink test (hrm__ivp_adaptive) share it. */
+static HRM_DEVICE HRM__CALL void hrm__legendre_inverse(const hrm_real *y, int n, int ld, hrm_real *V, hrm_real *I)
 {
-    hrm_real V[HRM__EFIT_MAX][HRM__EFIT_MAX], (*I)[HRM__EFIT_MAX] = F->A;
     int j, k, r;
-    F->n = n;
     for (j = 0; j < n; ++j) {
         hrm_real p0 = 1, p1 = y[j];
-        F->y[j] = y[j];
         for (k = 0; k < n; ++k) {
             hrm_real pk = k == 0 ? 1 : k == 1 ? y[j] : ((2 * (hrm_real)k - 1) * y[j] * p1 -
                                                        ((hrm_real)k - 1) * p0) / (hrm_real)k;
@@ -4046,31 +4048,45 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__efit_init(hrm__efit *F, cons
                 p0 = p1;
                 p1 = pk;
             }
-            V[j][k] = pk;
-            I[j][k] = j == k ? 1 : 0;
+            V[j * ld + k] = pk;
+            I[j * ld + k] = j == k ? 1 : 0;
         }
     }
     for (k = 0; k < n; ++k) {
         int piv = k;
+        hrm_real d;
         for (r = k + 1; r < n; ++r)
-            if (HRM_FABS(V[r][k]) > HRM_FABS(V[piv][k])) piv = r;
+            if (HRM_FABS(V[r * ld + k]) > HRM_FABS(V[piv * ld + k])) piv = r;
         for (j = 0; j < n; ++j) {
-            hrm_real t = V[k][j];
-            V[k][j] = V[piv][j];
-            V[piv][j] = t;
-            t = I[k][j];
-            I[k][j] = I[piv][j];
-            I[piv][j] = t;
+            hrm_real t = V[k * ld + j];
+            V[k * ld + j] = V[piv * ld + j];
+            V[piv * ld + j] = t;
+            t = I[k * ld + j];
+            I[k * ld + j] = I[piv * ld + j];
+            I[piv * ld + j] = t;
         }
-        for (j = n - 1; j >= 0; --j) I[k][j] /= V[k][k];
-        for (j = n - 1; j >= k; --j) V[k][j] /= V[k][k];
+        d = V[k * ld + k];
+        for (j = n - 1; j >= 0; --j) I[k * ld + j] /= d;
+        for (j = n - 1; j >= k; --j) V[k * ld + j] /= d;
         for (r = 0; r < n; ++r) {
-            hrm_real f = V[r][k];
+            hrm_real f = V[r * ld + k];
             if (r == k || f == 0) continue;
-            for (j = k; j < n; ++j) V[r][j] -= f * V[k][j];
-            for (j = 0; j < n; ++j) I[r][j] -= f * I[k][j];
+            for (j = k; j < n; ++j) V[r * ld + j] -= f * V[k * ld + j];
+            for (j = 0; j < n; ++j) I[r * ld + j] -= f * I[k * ld + j];
         }
     }
+}
+
+/* The fit on nodes y[0..n) (ascending, in [-1, 1]): F->A the Legendre
+   Vandermonde matrix's inverse (hrm__legendre_inverse; V alone in the
+   frame). */
+static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__efit_init(hrm__efit *F, const hrm_real *y, int n)
+{
+    hrm_real V[HRM__EFIT_MAX][HRM__EFIT_MAX];
+    int j;
+    F->n = n;
+    for (j = 0; j < n; ++j) F->y[j] = y[j];
+    hrm__legendre_inverse(y, n, HRM__EFIT_MAX, &V[0][0], &F->A[0][0]);
 }
 
 /* s_k = exp(-b) i_k(b), k = 0..n-1, b >= 0 (i_k the modified spherical
@@ -4474,50 +4490,26 @@ typedef struct hrm__nodes_info {
     int m, stage[HRM__MAX_STAGES];
     hrm_real c[HRM__MAX_STAGES], W;
     hrm_real bw[HRM__MAX_STAGES], ew[HRM__MAX_STAGES]; /* quadrature weights */
-    /* the Legendre coefficients on [0, 1] of the polynomial through values
-       f at the distinct nodes: a_k = sum_j leg[k][j] f[j] (hrm__pair_tail) */
-    hrm_real leg[HRM__MAX_STAGES][HRM__MAX_STAGES];
+    /* rows m - 1 .. m - 4 of the nodes' Legendre Vandermonde inverse
+       (hrm__legendre_inverse, on 2 c - 1): the top four Legendre
+       coefficients on the step of the polynomial through values at the
+       distinct nodes, row r at leg[r * m] (the kink test, hrm__leg_tail;
+       set by hrm__nodes_legendre where m >= 6) */
+    hrm_real leg[4 * HRM__MAX_STAGES];
 } hrm__nodes_info;
 
-/* ni->leg: the inverse of V[j][k] = P_k(2 c_j - 1) (P_k Legendre's
-   polynomials), the nodes' Vandermonde matrix in Legendre's basis on [0,
-   1], by Gauss-Jordan elimination with partial pivoting (at most 8
-   distinct nodes, all in [0, 1]: V is well conditioned;
-   tests/test_tables.c checks V leg = I). */
-static HRM_DEVICE void hrm__nodes_legendre(hrm__nodes_info *ni)
+/* ni->leg (an adaptive pair's kink test, hrm__pair_tail): the four
+   rows it reads of the inverse, pairs of 6 distinct nodes or more (a
+   frame of its own: the inverse's 1 KiB is gone before the solve). */
+static HRM_DEVICE HRM__NOINLINE void hrm__nodes_legendre(hrm__nodes_info *ni)
 {
-    hrm_real A[HRM__MAX_STAGES][2 * HRM__MAX_STAGES];
-    int m = ni->m, j, k, q, r;
-    for (j = 0; j < m; ++j) {
-        hrm_real x = 2 * ni->c[j] - 1, p0 = 1, p1 = x;
-        for (k = 0; k < m; ++k) {
-            hrm_real pk = k == 0 ? 1 : x;
-            if (k >= 2) {
-                pk = ((hrm_real)(2 * k - 1) * x * p1 - (hrm_real)(k - 1) * p0) / (hrm_real)k;
-                p0 = p1;
-                p1 = pk;
-            }
-            A[j][k] = pk;
-            A[j][m + k] = j == k ? 1 : 0;
-        }
-    }
-    for (q = 0; q < m; ++q) {
-        int piv = q;
-        for (r = q + 1; r < m; ++r)
-            if (HRM_FABS(A[r][q]) > HRM_FABS(A[piv][q])) piv = r;
-        for (k = 0; k < 2 * m; ++k) {
-            hrm_real t = A[q][k];
-            A[q][k] = A[piv][k];
-            A[piv][k] = t;
-        }
-        for (r = 0; r < m; ++r)
-            if (r != q) {
-                hrm_real f = A[r][q] / A[q][q];
-                for (k = q; k < 2 * m; ++k) A[r][k] -= f * A[q][k];
-            }
-    }
-    for (q = 0; q < m; ++q)
-        for (k = 0; k < m; ++k) ni->leg[q][k] = A[q][m + k] / A[q][q];
+    hrm_real y[HRM__MAX_STAGES], V[HRM__MAX_STAGES * HRM__MAX_STAGES], I[HRM__MAX_STAGES * HRM__MAX_STAGES];
+    int m = ni->m, j, r;
+    if (m < 6) return;
+    for (j = 0; j < m; ++j) y[j] = 2 * ni->c[j] - 1;
+    hrm__legendre_inverse(y, m, HRM__MAX_STAGES, V, I);
+    for (r = 0; r < 4; ++r)
+        for (j = 0; j < m; ++j) ni->leg[r * m + j] = I[(m - 1 - r) * HRM__MAX_STAGES + j];
 }
 
 static HRM_DEVICE HRM__CALL void hrm__nodes_init(const hrm__tableau *tb, hrm__nodes_info *ni)
@@ -4546,7 +4538,6 @@ static HRM_DEVICE HRM__CALL void hrm__nodes_init(const hrm__tableau *tb, hrm__no
                 if (tb->bh) ni->ew[j] += tb->b[i] - tb->bh[i];
             }
     }
-    hrm__nodes_legendre(ni);
     ni->W = 0;
     for (i = 0; i < 256; ++i) { /* midpoint rule: W needs no precision */
         hrm_real x = ((hrm_real)i + HRM__R(0.5)) / 256, pr = 1;
@@ -4806,6 +4797,28 @@ static HRM_DEVICE void hrm__gap_miss(const hrm_real *x, const hrm_real *r, const
     }
 }
 
+/* The kink test of Gauss-Kronrod (hrm__gk_tail) and the pairs
+   (hrm__pair_tail): four rows of Legendre coefficients of the polynomial
+   through the n values f (rows[r * n + j]: the top two, then the two the
+   test holds them against); the larger of the top two where it keeps
+   more than 1 / ratio of the larger of the other two and stands above
+   round-off (a few ulps of the values need not fall: an exponential
+   fitted exactly), else 0. */
+static HRM_DEVICE hrm_real hrm__leg_tail(const hrm_real *rows, int n, const hrm_real *f, hrm_real ratio)
+{
+    hrm_real co[4], big = 0;
+    int r, j;
+    for (r = 0; r < 4; ++r) {
+        co[r] = 0;
+        for (j = 0; j < n; ++j) co[r] += rows[r * n + j] * f[j];
+        co[r] = HRM_FABS(co[r]);
+    }
+    for (j = 0; j < n; ++j) big = HRM_FABS(f[j]) > big ? HRM_FABS(f[j]) : big;
+    co[0] = co[0] > co[1] ? co[0] : co[1];
+    co[2] = co[2] > co[3] ? co[2] : co[3];
+    return co[0] > co[2] / ratio && co[0] > 64 * HRM__EPS * big ? co[0] : 0;
+}
+
 /* A pair's step over a kink (an Li whose slope jumps between its nodes): the
    embedded estimate, another rule through the same nodes, can agree by
    chance (Dormand-Prince's widest gap, 0.3 to 0.8 of the step: a knot at
@@ -4830,19 +4843,10 @@ static HRM_DEVICE void hrm__gap_miss(const hrm_real *x, const hrm_real *r, const
    left Verner 1 silent. */
 static HRM_DEVICE void hrm__pair_tail(const hrm__nodes_info *ni, const hrm_real *f, hrm_real h, hrm_real *em)
 {
-    hrm_real a[HRM__MAX_STAGES], fm = 0, tail, body;
-    int m = ni->m, j, k;
-    if (m < 6) return;
-    for (k = 0; k < m; ++k) {
-        a[k] = 0;
-        for (j = 0; j < m; ++j) a[k] += ni->leg[k][j] * f[j];
-    }
-    for (j = 0; j < m; ++j)
-        if (HRM_FABS(f[j]) > fm) fm = HRM_FABS(f[j]);
-    tail = HRM_FABS(a[m - 1]) > HRM_FABS(a[m - 2]) ? HRM_FABS(a[m - 1]) : HRM_FABS(a[m - 2]);
-    body = HRM_FABS(a[m - 3]) > HRM_FABS(a[m - 4]) ? HRM_FABS(a[m - 3]) : HRM_FABS(a[m - 4]);
-    if (tail > body / 16 && tail > 64 * HRM__EPS * fm && HRM_FABS(h) * tail / 4 > *em)
-        *em = HRM_FABS(h) * tail / 4;
+    hrm_real tail;
+    if (ni->m < 6) return;
+    tail = hrm__leg_tail(ni->leg, ni->m, f, 16) * HRM_FABS(h) / 4;
+    if (tail > *em) *em = tail;
 }
 
 /* The quadrature form of a step (see hrm__nodes_info): the distinct nodes
@@ -5395,6 +5399,7 @@ static HRM_DEVICE HRM__CALL void hrm__ivp_adaptive(hrm__ctx *c, const hrm__table
     hrm_real zmax = c->rte ? tb->zmax : 0, hz = HRM__R(HUGE_VAL);
 
     hrm__nodes_init(tb, &ni);
+    hrm__nodes_legendre(&ni);
     hrm__ivp_init(c, y);
     /* The first attempt is the pilot that sets the scale. */
     h = h0 > 0 ? h0 : P * HRM__R(0.5) * HRM_POW(c->rtol, 1 / (kk + 1));
@@ -5970,19 +5975,7 @@ static HRM_DEVICE HRM__CALL hrm_real hrm__gk_warp_miss(hrm__ctx *c, const hrm__g
    times the exponential's mass. */
 static HRM_DEVICE hrm_real hrm__gk_tail(const hrm__gk_pair *R, const hrm_real *f, hrm_real hl)
 {
-    hrm_real co[4], big = 0;
-    int r, j, N = R->n;
-    for (r = 0; r < 4; ++r) {
-        co[r] = 0;
-        for (j = 0; j < N; ++j) co[r] += R->leg[r * N + j] * f[j];
-        co[r] = HRM_FABS(co[r]);
-    }
-    for (j = 0; j < N; ++j) big = HRM_FABS(f[j]) > big ? HRM_FABS(f[j]) : big;
-    co[0] = co[0] > co[1] ? co[0] : co[1];
-    co[2] = co[2] > co[3] ? co[2] : co[3];
-    /* (round-off's coefficients, a few ulps of the values, need not
-       fall: an exponential fitted exactly) */
-    return co[0] > co[2] / (N == 15 ? 8 : 20) && co[0] > 64 * HRM__EPS * big ? co[0] * HRM_FABS(hl) : 0;
+    return hrm__leg_tail(R->leg, R->n, f, R->n == 15 ? 8 : 20) * HRM_FABS(hl);
 }
 
 /* The Kronrod rule (c->gk) over [a, b] of y = (tau, L) given tau at a
@@ -8223,12 +8216,12 @@ static HRM_DEVICE HRM__NOINLINE hrm_status hrm__cut_ray(hrm__job *j, hrm__ctx *c
     return HRM_OK;
 }
 
-/* A ray cut by options.cutoff before the equiangular warp's light foot:
-   the source there, sampled once (one evaluation, one lookup), so that
-   the remainder's estimate holds the light's peak, which the solve never
-   came near (a light 1 from the ray 7 past t_cut: the estimate 2.1 times
-   short of the remainder without it, 1.0e-5 against 2.1e-5). A callback's bad value there leaves
-   the solve's answer as it was. */
+/* A ray cut by options.cutoff before the equiangular warp's light foot: the
+   source there, sampled once (one evaluation, one lookup), so that the
+   remainder's estimate holds the light's peak, which the solve never came
+   near (a light 1 from the ray 7 past t_cut: the estimate 2.1 times short of
+   the remainder without it, 1.0e-5 against 2.1e-5). A callback's bad value
+   there leaves the solve's answer as it was. */
 static HRM_DEVICE void hrm__cut_foot(hrm__ctx *c, hrm_real s)
 {
     hrm_real sa[HRM__CH], ss[HRM__CH], st[HRM__CH], q[HRM__CH], keep[HRM__CH];

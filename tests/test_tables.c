@@ -151,6 +151,38 @@ static void ad_tableaus(void)
    2. Gauss-Kronrod tables
    ======================================================================== */
 
+/* P_k(x) by the three-term recurrence. */
+static double ad_legendre(int k, double x)
+{
+    double p0 = 1, p1 = x;
+    int q;
+    if (k == 0) return 1;
+    for (q = 1; q < k; ++q) {
+        double p2 = ((2 * q + 1) * x * p1 - q * p0) / (q + 1);
+        p0 = p1;
+        p1 = p2;
+    }
+    return p1;
+}
+
+/* Four rows of Legendre coefficients at the n nodes x (rows[r * n + j]),
+   row r that of degree deg[r]: applied to P_k at the nodes, it gives 1
+   for k = deg[r] and 0 for every other k < n, within bound; the worst
+   miss into *worst. */
+static void ad_legendre_rows(const hrm_real *rows, int n, const double *x, const int deg[4], double bound,
+                             const char *name, double *worst)
+{
+    int r, k, j;
+    for (r = 0; r < 4; ++r)
+        for (k = 0; k < n; ++k) {
+            double v = 0;
+            for (j = 0; j < n; ++j) v += (double)rows[r * n + j] * ad_legendre(k, x[j]);
+            v = fabs(v - (k == deg[r] ? 1 : 0));
+            CHECK(v <= bound, "%s Legendre row %d on P_%d: off by %.3g", name, r, k, v);
+            if (v > *worst) *worst = v;
+        }
+}
+
 /* integral of x^k over [-1, x] */
 static double ad_mono_int(int k, double x)
 {
@@ -240,41 +272,26 @@ static void ad_gk_tables(void)
     {
         static const int deg15[4] = {14, 13, 10, 9}, deg7[4] = {6, 5, 4, 3};
         const hrm__gk_pair *pr[2] = {&hrm__k15, &hrm__k7};
-        int p, r, m;
-        double worst_leg = 0;
+        double worst_leg = 0, xn[15];
+        int p;
         for (p = 0; p < 2; ++p) {
             int n = pr[p]->n;
-            for (r = 0; r < 4; ++r)
-                for (m = 0; m < n; ++m) {
-                    double v = 0;
-                    for (l = 0; l < n; ++l) {
-                        double xl = (double)pr[p]->x[l], p0 = 1, p1 = xl, pm = m == 0 ? 1 : xl;
-                        int q;
-                        for (q = 1; q < m; ++q) {
-                            pm = ((2 * q + 1) * xl * p1 - q * p0) / (q + 1);
-                            p0 = p1;
-                            p1 = pm;
-                        }
-                        v += (double)pr[p]->leg[r * n + l] * pm;
-                    }
-                    v = fabs(v - (m == (p ? deg7 : deg15)[r] ? 1 : 0));
-                    CHECK(v <= (real_is_float() ? 4.0 * n * n * (double)FLT_EPSILON : 1e-13),
-                          "%s Legendre row %d on P_%d: off by %.3g", p ? "K7" : "K15", r, m, v);
-                    if (v > worst_leg) worst_leg = v;
-                }
+            for (l = 0; l < n; ++l) xn[l] = (double)pr[p]->x[l];
+            ad_legendre_rows(pr[p]->leg, n, xn, p ? deg7 : deg15,
+                             real_is_float() ? 4.0 * n * n * (double)FLT_EPSILON : 1e-13, p ? "K7" : "K15",
+                             &worst_leg);
         }
         NOTE("Legendre rows of K15 and K7: worst %.3g", worst_leg);
     }
 }
 
-/* The pairs' Legendre matrices (hrm__nodes_info.leg, computed by
-   hrm__nodes_legendre from each tableau's distinct nodes: the kink test,
-   hrm__pair_tail): applied to P_k at the nodes, row r gives 1 for r = k
-   and 0 for every other k < m (the interpolant of P_k is P_k), and the
-   Legendre coefficients of a polynomial of degree m - 1 given by its
-   values are its own. Bound: m terms of magnitude at most 4 (the
-   inverse's largest entry, 2.65) each to a few epsilons: double 1e-13;
-   float 64 m FLT_EPSILON 4. */
+/* The pairs' Legendre rows (hrm__nodes_info.leg, set by
+   hrm__nodes_legendre from each tableau's distinct nodes through
+   hrm__legendre_inverse, the exponential fits' inverse: the kink test,
+   hrm__pair_tail): rows m - 1 .. m - 4, checked as the Gauss-Kronrod
+   rows above on P_k at the nodes 2 c - 1. Bound: m terms of magnitude at
+   most 4 (the largest entry, 2.65) each to a few epsilons: double 1e-13;
+   float 64 m FLT_EPSILON 4. Bogacki-Shampine (4 nodes) has none. */
 static void ad_pair_legendre(void)
 {
     static const int want_m[5] = {4, 6, 6, 6, 7}; /* distinct nodes */
@@ -282,33 +299,24 @@ static void ad_pair_legendre(void)
     int p;
     for (p = 0; p < 5; ++p) {
         const hrm__tableau *tb = hrm__methods[HRM_BOGACKI_SHAMPINE + p].tb;
+        const char *name = hrm_method_name((hrm_method)(HRM_BOGACKI_SHAMPINE + p));
         hrm__nodes_info ni;
-        int r, k, j;
+        double x[HRM__MAX_STAGES];
+        int deg[4], j, m;
         hrm__nodes_init(tb, &ni);
-        CHECK_INT(ni.m, want_m[p], "%s: distinct nodes", hrm_method_name((hrm_method)(HRM_BOGACKI_SHAMPINE + p)));
-        for (r = 0; r < ni.m; ++r)
-            for (k = 0; k < ni.m; ++k) {
-                double v = 0;
-                if (fabs((double)ni.leg[r][k]) > biggest) biggest = fabs((double)ni.leg[r][k]);
-                for (j = 0; j < ni.m; ++j) {
-                    double x = 2 * (double)ni.c[j] - 1, p0 = 1, p1 = x, pk = k == 0 ? 1 : x;
-                    int q;
-                    for (q = 1; q < k; ++q) {
-                        pk = ((2 * q + 1) * x * p1 - q * p0) / (q + 1);
-                        p0 = p1;
-                        p1 = pk;
-                    }
-                    v += (double)ni.leg[r][j] * pk;
-                }
-                v = fabs(v - (r == k ? 1 : 0));
-                CHECK(v <= (real_is_float() ? 64.0 * ni.m * 4 * (double)FLT_EPSILON : 1e-13),
-                      "%s: Legendre row %d on P_%d off by %.3g",
-                      hrm_method_name((hrm_method)(HRM_BOGACKI_SHAMPINE + p)), r, k, v);
-                if (v > worst) worst = v;
-            }
+        hrm__nodes_legendre(&ni);
+        m = ni.m;
+        CHECK_INT(m, want_m[p], "%s: distinct nodes", name);
+        if (m < 6) continue;
+        for (j = 0; j < 4; ++j) deg[j] = m - 1 - j;
+        for (j = 0; j < m; ++j) x[j] = 2 * (double)ni.c[j] - 1;
+        for (j = 0; j < 4 * m; ++j)
+            if (fabs((double)ni.leg[j]) > biggest) biggest = fabs((double)ni.leg[j]);
+        ad_legendre_rows(ni.leg, m, x, deg, real_is_float() ? 64.0 * m * 4 * (double)FLT_EPSILON : 1e-13, name,
+                         &worst);
     }
-    CHECK(biggest <= 4, "the pairs' Legendre matrices: largest entry %.3g (the bound above assumes 4)", biggest);
-    NOTE("the pairs' Legendre matrices: worst %.3g, largest entry %.3g", worst, biggest);
+    CHECK(biggest <= 4, "the pairs' Legendre rows: largest entry %.3g (the bound above assumes 4)", biggest);
+    NOTE("the pairs' Legendre rows: worst %.3g, largest entry %.3g", worst, biggest);
 }
 
 /* ======================================================================== */
