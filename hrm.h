@@ -8181,6 +8181,20 @@ static HRM_DEVICE HRM__NOINLINE hrm_status hrm__with_gk(hrm__job *j)
     return hrm__stage(j);
 }
 
+/* c set up for job j on [j->t0, t1] in the storage j holds (keep_layer:
+   a ray cut by the scan, hrm__cut_ray). */
+static HRM_DEVICE HRM__CALL hrm_status hrm__job_setup(hrm__job *j, hrm__ctx *c, hrm_real t1, int keep_layer)
+{
+    memset(c, 0, sizeof *c);
+    c->ns = (hrm__ns_store *)j->at[3];
+    c->gks = (hrm__gk_store *)j->at[4];
+    c->finish = (hrm__ns_half *)j->at[5];
+    c->pieces = (hrm__piece_tab *)j->at[7];
+    c->keep_layer = keep_layer;
+    return hrm__setup(c, (hrm__tau *)j->at[0], (hrm__memo_tab *)j->at[1], (hrm__efit *)j->at[2], j->m, j->t0, t1,
+                      &j->o, j->tr_only);
+}
+
 /* The ray cut where the medium scan's tau passed options.cutoff's: c set
    up again on [t0, t0 + c->cut_at], with what the scan found (its jumps,
    the layer's first panels and samples, its lookups) kept. A frame of its
@@ -8196,14 +8210,7 @@ static HRM_DEVICE HRM__NOINLINE hrm_status hrm__cut_ray(hrm__job *j, hrm__ctx *c
     /* the distance warp keeps its sigma_ref (its reach, marched on the
        layer, would clear what the scan taught it) */
     if (c->warp == HRM_WARP_DISTANCE) j->o.warp.sigma_ref = c->w_sigma;
-    memset(c, 0, sizeof *c);
-    c->ns = (hrm__ns_store *)j->at[3];
-    c->gks = (hrm__gk_store *)j->at[4];
-    c->finish = (hrm__ns_half *)j->at[5];
-    c->pieces = (hrm__piece_tab *)j->at[7];
-    c->keep_layer = 1;
-    st = hrm__setup(c, (hrm__tau *)j->at[0], (hrm__memo_tab *)j->at[1], (hrm__efit *)j->at[2], j->m, j->t0, t1,
-                    &j->o, j->tr_only);
+    st = hrm__job_setup(j, c, t1, 1);
     if (st != HRM_OK) return st;
     /* the scan's breakpoints (the options' among them) inside the cut ray */
     for (k = 0, c->nbrk = 0; k < nbrk; ++k)
@@ -8238,19 +8245,12 @@ static HRM_DEVICE void hrm__cut_foot(hrm__ctx *c, hrm_real s)
    caller's workspace or the frame of hrm__solve_local). */
 static HRM_DEVICE HRM__CALL HRM__NOINLINE hrm_status hrm__solve_job(hrm__job *j, hrm__ctx *c)
 {
-    const hrm_medium *m = j->m;
     const hrm_options *o = &j->o;
     hrm_real y[HRM__NY], t1 = j->t1;
     hrm_status st;
     int k;
 
-    memset(c, 0, sizeof *c);
-    c->ns = (hrm__ns_store *)j->at[3];
-    c->gks = (hrm__gk_store *)j->at[4];
-    c->finish = (hrm__ns_half *)j->at[5];
-    c->pieces = (hrm__piece_tab *)j->at[7];
-    st = hrm__setup(c, (hrm__tau *)j->at[0], (hrm__memo_tab *)j->at[1], (hrm__efit *)j->at[2], m, j->t0, t1,
-                    o, j->tr_only);
+    st = hrm__job_setup(j, c, t1, 0);
     *j->stats = c->stats;
     if (st != HRM_OK) return st;
     if (j->t0 == t1) {
