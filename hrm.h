@@ -405,10 +405,10 @@
    find_jumps 1) first scans sigma_t (callbacks, no transmittance callback) at
    the layer's first panels' degree-8 points (33, one panel a piece at least;
    medium.feature: gaps of at most it, 4097 points at most): a factor 2 between
-   neighbours off the last gap's trend is bisected, a jump or edge made a
-   breakpoint, a steep smooth change or a sample 1/8 off both neighbours taught
-   to the layer; it ends where its tau passes 2 ln(64 / rtol). What it located:
-   result.jumps. -1: neither. Finer detail needs medium.feature.
+   neighbours is bisected, a jump or edge made a breakpoint, a steep smooth
+   change or a sample 1/8 off both neighbours taught to the layer; the scan
+   ends where its tau passes 2 ln(64 / rtol). Located points: result.jumps (the
+   next pixel's breakpoints). -1: neither. Finer detail needs medium.feature.
 
    ==========================================================================
    EXPONENTIAL FITTING (options.exponential)
@@ -7604,15 +7604,8 @@ static HRM_DEVICE HRM__CALL int hrm__locate_sigma_jump(hrm__ctx *c, hrm_real a, 
    most HRM__SCAN_MAX (the feature's spacing, or 33 points); and both
    sides of each breakpoint);
    where neighbours differ by a factor 2 or more the jump between them is
-   located (unless the change goes on the last or the next gap's, the
-   same way and at most 5/4 as steep: a smooth medium's trend, in noise
-   most such pairs; make render's smoke (quick): the search's lookups a
-   camera ray 18.6 -> 2.2, the scan's 55 -> 38.7, Gauss-Kronrod K7's
-   87.4 -> 79.1 a pixel, the image the same; a jump on such a trend is
-   left to the layer and the methods: tests/test_breaks.c br_trend, where
-   wavy media with a jump on their slopes cost 6% more lookups) and made
-   a breakpoint before the method runs, so that a slab or a bounding box
-   is integrated at each piece's order by every method and
+   located and made a breakpoint before the method runs, so that a slab or
+   a bounding box is integrated at each piece's order by every method and
    every form; so is a medium's edge (sigma_t 0 on one side), kink or
    jump. Where no jump is found between them (a steep but smooth change),
    the transmittance layer learns the larger of the two samples, which its
@@ -7686,8 +7679,7 @@ static HRM_DEVICE HRM__CALL void hrm__scan_medium(hrm__ctx *c)
     hrm_real a = 0, fa = hrm__sigma_sum(c, 0, 0, sa), tau[HRM__CH], least;
     hrm_real deep = 2 * HRM_LOG(64 / c->rtol);
     int k = 1, b = 0, i, nscan = HRM__SCAN, prev = 0, keep, nq = 0;
-    hrm_real fp = 0, ap = 0; /* the sample before a, and where */
-    hrm_real xn = -1, fn = 0, sn[HRM__CH]; /* a sample taken ahead (xn >= 0) */
+    hrm_real fp = 0;
     hrm__fill(tau, HRM__CH, 0);
     nq = hrm__scan_layout(c, pb);
     if (nq) {
@@ -7717,13 +7709,7 @@ static HRM_DEVICE HRM__CALL void hrm__scan_medium(hrm__ctx *c)
         x = is_brk ? c->brk_off[b] : grid;
         if (!is_brk) ++k;
         if (!(x > a)) continue;
-        if (x == xn) {
-            fx = fn;
-            memcpy(sx, sn, sizeof sx);
-        } else {
-            fx = hrm__sigma_sum(c, x, -1, sx);
-        }
-        xn = -1;
+        fx = hrm__sigma_sum(c, x, -1, sx);
         if (keep && x == grid) {
             memcpy(c->tau->scan_s[gk], sx, sizeof sx);
             c->tau->scan_have[gk] = 1;
@@ -7733,26 +7719,7 @@ static HRM_DEVICE HRM__CALL void hrm__scan_medium(hrm__ctx *c)
             least = tau[i] < least ? tau[i] : least;
         }
         if (hrm__sigma_differs(fa, fx)) {
-            /* a change the same way as a neighbouring gap's and at most
-               5/4 as steep (sigma_t not 0 at the four; the next gap's
-               sampled ahead, where no breakpoint comes first): the trend
-               of a smooth medium (noise, a soft edge), not searched */
-            int trend = 0;
-            if (fa != 0 && fx != 0 && !is_brk) {
-                trend = prev && fp != 0 && (fx - fa) * (fa - fp) > 0 && 4 * HRM_FABS(fx - fa) * (a - ap) <= 5 * HRM_FABS(fa - fp) * (x - a);
-                /* (not past the scan's end: the cut-off's, or deep) */
-                if (!trend && x < c->off_end && !(c->cut_tau > 0 && least > c->cut_tau) && !(least > deep)) {
-                    hrm_real g2 = hrm__scan_at(pb, nq, c->off_end, k, nscan);
-                    int b2 = b;
-                    while (b2 < c->nbrk && c->brk_off[b2] <= x) ++b2;
-                    if (g2 > x && !(b2 < c->nbrk && c->brk_off[b2] <= g2)) {
-                        fn = hrm__sigma_sum(c, g2, -1, sn);
-                        xn = g2;
-                        trend = fn != 0 && (fn - fx) * (fx - fa) > 0 && 4 * HRM_FABS(fx - fa) * (g2 - x) <= 5 * HRM_FABS(fn - fx) * (x - a);
-                    }
-                }
-            }
-            if (!trend && hrm__locate_sigma_jump(c, a, x, fa, fx, &at)) {
+            if (hrm__locate_sigma_jump(c, a, x, fa, fx, &at)) {
                 if (!hrm__add_jump(c, at)) return; /* no room for more */
             } else if (c->decoupled) {
                 if (fx > fa) hrm__tau_learn(c->tau, x, sx);
@@ -7768,7 +7735,6 @@ static HRM_DEVICE HRM__CALL void hrm__scan_medium(hrm__ctx *c)
             if (((fa < fp && fa < fx) || (fa > fp && fa > fx)) && HRM_FABS(fa - (fp / 2 + fx / 2)) > big / 8)
                 hrm__tau_learn(c->tau, a, sa);
         }
-        ap = a;
         a = x;
         if (c->cut_tau > 0 && least > c->cut_tau && x < c->off_end) {
             /* options.cutoff passed: the ray ends here */
