@@ -456,10 +456,10 @@
    With options NULL or options.method 0, hrm_transmittance integrates
    sigma_t by Simpson panels in t, the worst first, to
        |Tr - exact| <= tr_tol max(Tr, cutoff)      (tr_tol 0: 1e-3),
-   a run of panels' error half the larger of |sum e| and 2 sqrt(sum e^2),
-   e a panel's S2 - S1 (at least its samples' 4th difference's), S2 + e/15
-   taken. It starts with 4 panels (17 lookups), none wider than
-   medium.feature where given. cutoff > 0: segments left to right, ending once every channel's
+   a run of panels' error the larger of |sum e| and 2 sqrt(sum e^2), e a
+   panel's S2 - S1 (at least the 4th difference its samples predict). It
+   starts with 4 panels (17 lookups), none wider than medium.feature where
+   given. cutoff > 0: segments left to right, ending once every channel's
    Tr is below it (that Tr returned, stats.t_cut where; shadow.md measures
    it). A named method, or an infinite ray, integrates as hrm_solve.
 
@@ -7991,18 +7991,6 @@ static HRM_DEVICE hrm_real hrm__shadow_take(const hrm__panel *p, int np, hrm_rea
     return est;
 }
 
-/* A segment [a, b) of a ray of reach T accepted at tolerance tol: its
-   estimate (of S1's error) at most 2 tol (b - a) / T. What it returns,
-   S2 + e / 15, is 16 times closer than S1 where sigma_t is smooth (e
-   scales as h^4) and about 4 times where a kink in sigma_t (a trilinear
-   grid's voxel faces) leaves e scaling as h^2; the factor 2 keeps half of
-   the latter. bench_shadow (smooth, smoke, voxels; 2000 rays each,
-   1e-1..1e-5): as many answers beyond 3 tolerances as with a factor 1
-   (3 of 30 000), at most 0.6% of rays between 1 and 3, 15-40% fewer
-   lookups at 1e-3..1e-5; with a factor 4, 7% of voxel rays beyond 1e-4
-   and 22 answers beyond 3 tolerances at 1e-5. */
-#define HRM__SHADOW_ALLOW(tol, len, T) (2 * (tol) * (len) / (T))
-
 static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__shadow_march(hrm__ctx *c, const hrm_options *o, hrm_real tau[HRM__CH])
 {
     hrm__panel p[HRM_SHADOW_PANELS];
@@ -8036,7 +8024,7 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__shadow_march(hrm__ctx *c, co
             hrm__panel_set(&p[k]);
         }
         c->stats.steps += np;
-        allow = HRM__SHADOW_ALLOW(o->tr_tol * loose, b - a, T);
+        allow = o->tr_tol * loose * (b - a) / T;
         while (c->status == HRM_OK && !(hrm__shadow_take(p, np, NULL) <= allow)) {
             hrm_real worst = -1;
             int w = -1;
@@ -8054,7 +8042,7 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__shadow_march(hrm__ctx *c, co
                    right half's samples given up */
                 np /= 2;
                 b = p[np].a;
-                allow = HRM__SHADOW_ALLOW(o->tr_tol * loose, b - a, T);
+                allow = o->tr_tol * loose * (b - a) / T;
                 continue;
             }
             /* panel w into halves, 4 samples more */
