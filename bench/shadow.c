@@ -1,6 +1,6 @@
 /* bench/shadow.c - shadow rays: what hrm_transmittance's estimator pays
    in density lookups for an accuracy of Tr, against what renderers march
-   by hand, on three media. Part of `make bench` (build/bench_shadow);
+   by hand, on four media. Part of `make bench` (build/bench_shadow);
    writes its tables on stdout and to OUTDIR/shadow.md.
 
    Media (each in the unit ball, density 0 outside):
@@ -10,17 +10,21 @@
               the ball's outer fifth
      voxels   a 32^3 grid of hashed densities, trilinear between voxel
               centres (a kink at every voxel face)
+     spheres  16 hard-edged spheres (radii 0.04-0.25, densities 1-6,
+              overlaps adding) in a background of 0.2: jumps
    Rays: 2000 random points of the ball towards random points of it,
    the density scaled so that tau along most rays is 0.2-5; rays with
    Tr < 1e-2 left out. Reference: composite 8-point Gauss-Legendre on
    4096 panels (on voxels, cut at every voxel face: exact for the cubic a
-   trilinear field is along a line), checked against 2048 panels.
+   trilinear field is along a line; on spheres, cut where the ray enters
+   and leaves each), checked against 2048 panels.
 
    Per ray and configuration: density lookups and the relative error of
    Tr. Configurations:
      hrm tol X      hrm_transmittance with options.tr_tol = X (method 0),
-                    medium.feature given (smoke 0.07, voxels 1/32; the
-                    last such row at 1e-3 without it); the
+                    medium.feature given (smoke 0.07, voxels 1/32,
+                    spheres 0.08, the least diameter; the last such row
+                    at 1e-3 without it); the
                     last columns: of the rays beyond it, those returned
                     HRM_OK; the count (not share) of HRM_OK answers beyond 3
                     tolerances (silent, as every bench table counts them)
@@ -46,13 +50,15 @@
 #define GLN 8
 #define GRID 32
 
-enum { SMOOTH, SMOKE, VOXELS, NMEDIA };
-static const char *const medium_name[NMEDIA] = {"smooth", "smoke", "voxels"};
+enum { SMOOTH, SMOKE, VOXELS, SPHERES, NMEDIA };
+static const char *const medium_name[NMEDIA] = {"smooth", "smoke", "voxels", "spheres"};
+#define NSPH 16
 
 typedef struct medium {
     int kind;
     double scale;            /* density scale */
     float grid[GRID * GRID * GRID];
+    double sc[NSPH][3], sr[NSPH], sv[NSPH]; /* spheres: centre, radius, density */
 } medium;
 
 typedef struct ray {
@@ -132,6 +138,17 @@ static double density(const medium *m, const double p[3])
         }
         return m->scale * exp(2.0 * n / 1.9375) * smoothstep(1, 0.8, sqrt(r2));
     }
+    if (m->kind == SPHERES) {
+        /* a thin background and hard-edged spheres, overlaps adding */
+        double v = 0.2;
+        int k, i;
+        for (k = 0; k < NSPH; ++k) {
+            double q = 0;
+            for (i = 0; i < 3; ++i) q += (p[i] - m->sc[k][i]) * (p[i] - m->sc[k][i]);
+            if (q < m->sr[k] * m->sr[k]) v += m->sv[k];
+        }
+        return m->scale * v;
+    }
     {
         /* trilinear between voxel centres of the grid over [-1, 1]^3 */
         double g[3], f[3], v = 0;
@@ -196,7 +213,7 @@ static void gl_rule(double x[GLN], double w[GLN])
    lies within one voxel (cut at the faces). */
 static double ref_tau(const medium *m, const double o[3], const double d[3], double L, int panels)
 {
-    double x[GLN], w[GLN], cut[4 * GRID + 8 + 4096 * 2], tau = 0;
+    double x[GLN], w[GLN], cut[4 * GRID + 8 + 4096 * 2 + 2 * NSPH], tau = 0;
     ray r;
     int n = 0, i, j, k;
     gl_rule(x, w);
@@ -213,6 +230,22 @@ static double ref_tau(const medium *m, const double o[3], const double d[3], dou
                     double face = -1 + (k + 0.5) * 2.0 / GRID, t = (face - o[i]) / d[i];
                     if (t > 0 && t < L) cut[n++] = t;
                 }
+    if (m->kind == SPHERES)
+        for (k = 0; k < NSPH; ++k) {
+            /* the ray's entry and exit of sphere k: |o + t d - c|^2 = r^2 */
+            double oc[3], bq = 0, cq = -m->sr[k] * m->sr[k], disc;
+            for (i = 0; i < 3; ++i) {
+                oc[i] = o[i] - m->sc[k][i];
+                bq += oc[i] * d[i];
+                cq += oc[i] * oc[i];
+            }
+            disc = bq * bq - cq;
+            if (disc > 0)
+                for (i = -1; i <= 1; i += 2) {
+                    double t = -bq + i * sqrt(disc);
+                    if (t > 0 && t < L) cut[n++] = t;
+                }
+        }
     /* sort */
     for (i = 1; i < n; ++i) {
         double v = cut[i];
@@ -297,8 +330,8 @@ int main(int argc, char **argv)
     static const double majorant[3] = {1, 2, 4};
     static const char *const hrm_names[NHRM] = {"hrm tol 1e-1", "hrm tol 1e-2", "hrm tol 1e-3", "hrm tol 1e-4",
                                                 "hrm tol 1e-5", "hrm tol 1e-3, feature not given"};
-    static const double scales[NMEDIA] = {1.6, 1.0, 1.5};
-    static const double features[NMEDIA] = {0, 0.07, 1.0 / GRID};
+    static const double scales[NMEDIA] = {1.6, 1.0, 1.5, 1.0};
+    static const double features[NMEDIA] = {0, 0.07, 1.0 / GRID, 0.08};
     char names[NCONF][32], path[512];
     const char *dir = argc > 1 ? argv[1] : "bench/out";
     FILE *md;
@@ -326,6 +359,16 @@ int main(int argc, char **argv)
         for (i = 0; i < GRID * GRID * GRID; ++i) {
             z = mix64(z);
             m->grid[i] = (float)(2.0 * (double)(z >> 40) / (double)(1u << 24));
+        }
+        for (i = 0; i < NSPH; ++i) {
+            /* inside the ball: centres within 0.8, radii 0.04-0.25 (the
+               thinnest feature a diameter of 0.08), densities 1-6 */
+            int c;
+            do {
+                for (c = 0; c < 3; ++c) m->sc[i][c] = unit(&z) * 1.6 - 0.8;
+            } while (m->sc[i][0] * m->sc[i][0] + m->sc[i][1] * m->sc[i][1] + m->sc[i][2] * m->sc[i][2] > 0.64);
+            m->sr[i] = 0.04 + 0.21 * unit(&z);
+            m->sv[i] = 1 + 5 * unit(&z);
         }
         memset(&tb, 0, sizeof tb);
         for (i = 0; i < NHRM; ++i) {
