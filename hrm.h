@@ -686,8 +686,10 @@ typedef struct hrm_medium {
                                           voxel, a noise's finest wisp); the
                                           medium scan samples sigma at this
                                           spacing, 9 a piece at least
-                                          (BREAKPOINTS). 0: unknown, 33
-                                          samples a ray */
+                                          (BREAKPOINTS), and the
+                                          transmittance layer's panels
+                                          sample it as closely. 0: unknown,
+                                          33 samples a ray */
 } hrm_medium;
 
 typedef struct hrm_options {
@@ -1908,6 +1910,10 @@ HRM__STATIC_ASSERT(tau_panels_16_to_65536, HRM_TAU_PANELS >= 16 && HRM_TAU_PANEL
 #define HRM__TCHECK 16     /* checkpoints of the march */
 #define HRM__SCAN 32       /* the medium scan's intervals (hrm__scan_medium) */
 #define HRM__SCAN_Q 8      /* its panels at most (hrm__scan_layout) */
+/* The widest gap between a panel's degree-8 points, over its width
+   (sin(pi/8)/2: beside its centre). */
+#define HRM__SCAN_GAP HRM__R(0.19134171618254488)
+#define HRM__SCAN_MAX 4096 /* the scan's points at most (medium.feature) */
 
 typedef struct hrm__tpanel {
     hrm_real a, b;          /* offsets from t0 */
@@ -2574,6 +2580,18 @@ static HRM_DEVICE HRM__CALL void hrm__tau_march(hrm__ctx *c, hrm__tau *L, hrm__t
         h = L->next_h;
     }
     q = hrm__tau_scan_panel(c, L, a);
+    /* with medium.feature, no panel wider than the scan's layout makes
+       them (its degree-8 points at most the feature apart), so that a
+       feature the scan saw but did not teach is sampled here too (past
+       the scan's panels, or where it lays its points evenly: a slab as
+       wide as the feature, 17% of the density on a steep bump, at rtol
+       1e-3 silent in 41 of 528 solves, its Tr that of the medium without
+       it); as the scan, HRM__SCAN_MAX points over the ray at most */
+    if (q < 0 && c->m->feature > 0) {
+        hrm_real wide = c->m->feature / HRM__SCAN_GAP, least = L->end / (HRM__SCAN_MAX / 8);
+        wide = wide > least ? wide : least;
+        if (h > wide) h = wide;
+    }
     /* past a breakpoint sigma_t may jump: its value on this side (the
        scan's, where it starts a panel of the scan) */
     if (id > 0 && hrm__is_break(c, a)) {
@@ -7630,10 +7648,6 @@ static HRM_DEVICE HRM__CALL int hrm__locate_sigma_jump(hrm__ctx *c, hrm_real a, 
    behind that no jump moves L by a share of rtol, and the layer and the
    rules, which still cover the rest, spend little there (a cloud's core:
    a quarter of a camera ray's lookups saved). */
-#define HRM__SCAN_MAX 4096
-/* The widest gap between a panel's degree-8 points, over its width
-   (sin(pi/8)/2: beside its centre). */
-#define HRM__SCAN_GAP HRM__R(0.19134171618254488)
 
 /* The scan's panels over the pieces between the breakpoints: one a piece
    at least, 4 in all at least, the rest to the pieces whose panels are

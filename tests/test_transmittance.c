@@ -1114,7 +1114,7 @@ static void tr_clipped_blob(void)
        (0.01: 103 scan points), HRM_OK within 3 rtol, and in double nearly
        always returned. In float, t = 2.73 resolves 3e-7, 2.6e-4 of the
        pairs' steps of 0.005 in the wisp: at rtol 1e-3 they pass on that
-       floor and say so (HRM_WARN_ROUNDOFF, 12 of the 42). */
+       floor and say so (HRM_WARN_ROUNDOFF, 13-14 of the 42). */
     b.c = t0 + 0.2675;
     b.w = 0.01;
     ok_runs = tr_blob_solves(&b, t0, t1, 0.01, "wisp, feature 0.01");
