@@ -2586,9 +2586,12 @@ static HRM_DEVICE HRM__CALL void hrm__tau_march(hrm__ctx *c, hrm__tau *L, hrm__t
        the scan's panels, or where it lays its points evenly: a slab as
        wide as the feature, 17% of the density on a steep bump, at rtol
        1e-3 silent in 41 of 528 solves, its Tr that of the medium without
-       it); as the scan, HRM__SCAN_MAX points over the ray at most */
+       it); 32 panels a ray at most (the layer's table on the stack), so
+       that a march begun again seldom has to (at most 512: nested Simpson
+       and Gauss-Kronrod on a ray of 1000 features made 4-6 times the
+       lookups, marching again from checkpoints; with 32, 1.1-1.5 times) */
     if (q < 0 && c->m->feature > 0) {
-        hrm_real wide = c->m->feature / HRM__SCAN_GAP, least = L->end / (HRM__SCAN_MAX / 8);
+        hrm_real wide = c->m->feature / HRM__SCAN_GAP, least = L->end / 32;
         wide = wide > least ? wide : least;
         if (h > wide) h = wide;
     }
