@@ -673,14 +673,19 @@ static double br_wave_li1(const br_wave *w, double t)
     return w->lp > 0 ? w->lp / (w->ld * w->ld + (t - w->lt) * (t - w->lt)) : 1 + 0.5 * sin(3 * t);
 }
 
-static void br_wave_sigma(void *u, hrm_real t, hrm_real sa[NCH], hrm_real ss[NCH])
+/* sigma_t v split by albedo into sigma_a and sigma_s, every channel */
+static void br_split_sigma(double v, double albedo, hrm_real sa[NCH], hrm_real ss[NCH])
 {
-    double v = br_wave_t((const br_wave *)u, (double)t);
     int c;
     for (c = 0; c < NCH; ++c) {
-        sa[c] = (hrm_real)(0.2 * v);
-        ss[c] = (hrm_real)(0.8 * v);
+        sa[c] = (hrm_real)((1 - albedo) * v);
+        ss[c] = (hrm_real)(albedo * v);
     }
+}
+
+static void br_wave_sigma(void *u, hrm_real t, hrm_real sa[NCH], hrm_real ss[NCH])
+{
+    br_split_sigma(br_wave_t((const br_wave *)u, (double)t), 0.8, sa, ss);
 }
 
 static void br_wave_li(void *u, hrm_real t, hrm_real out[NCH])
@@ -854,12 +859,7 @@ static double br_bump_t(const br_bump *s, double t)
 
 static void br_bump_sigma(void *u, hrm_real t, hrm_real sa[NCH], hrm_real ss[NCH])
 {
-    double v = br_bump_t((const br_bump *)u, (double)t);
-    int c;
-    for (c = 0; c < NCH; ++c) {
-        sa[c] = (hrm_real)(0.15 * v);
-        ss[c] = (hrm_real)(0.85 * v);
-    }
+    br_split_sigma(br_bump_t((const br_bump *)u, (double)t), 0.85, sa, ss);
 }
 
 static void br_feature_slab(void)
