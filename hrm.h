@@ -266,13 +266,13 @@
    from options.seed alone: the same inputs give the same answer.
    Stack (tests/stack.c: the worst variant, double, 3 channels, gcc, clang
    -O2): fixed-step methods 7-11 KiB on constants, 25 at most (the
-   transmittance layer 11: a table of 32 panels); the pairs 14 and 30;
-   Gauss-Kronrod 88, nested Simpson 105; the shadow-ray estimator 8; about 2.2
+   transmittance layer 11: a table of 32 panels); the pairs 14 and 31;
+   Gauss-Kronrod 85, nested Simpson 95; the shadow-ray estimator 9; about 2.2
    times that with 8 channels, half in float, at most (48 + 48 HRM_CHANNELS)
    KiB; twice with a shadow ray solved inside Li. options.workspace
    (hrm_workspace_size bytes, aligned to 16, one a thread) holds the layer (128
    panels), adaptive storage and context instead, same answers: fixed-step
-   methods 7.5 KiB of stack, every method 18, 33 with a nested shadow ray.
+   methods 7.5 KiB of stack, every method 19, 33 with a nested shadow ray.
    GPU kernels: under nvcc or hipcc every function is __host__ __device__
    (HRM_DEVICE; define it to override) and the tables exist on both sides.
    Build the medium in the kernel (callbacks: device functions), give each
@@ -6293,32 +6293,52 @@ typedef struct hrm__iv {
     hrm_real a, b, V[HRM__NY], E[HRM__NY];
     hrm_real D[HRM__NY]; /* |S2 - S1| or |K - G| */
     hrm_real M[HRM__CH]; /* the medium check's miss (hrm__medium_miss) */
-    int s[4]; /* nested Simpson: its samples at a, a + h/4, a + h/2, a + 3h/4 */
-    hrm__gk_io io; /* Gauss-Kronrod: ends, check sample, centre */
-    char fell[HRM__NY]; /* nested Simpson: |S2 - S1| fell 8 times at its split */
-    char resolved[HRM__CH]; /* nested Simpson: its samples of L' look resolved (hrm__resolved5) */
+    char fell[HRM__NY]; /* its raw estimate D fell (hrm__wf_trust) at its split */
     int rough; /* splits in a row at which it kept 30% of its parent's estimate */
     hrm_real score; /* its estimates over their shares (hrm__wf_sum) */
 } hrm__iv;
+
+/* Each driver's interval: the shared part first, then its own. */
+typedef struct hrm__nsi {
+    hrm__iv h;
+    int s[4]; /* its samples at a, a + h/4, a + h/2, a + 3h/4 */
+    char resolved[HRM__CH]; /* its samples of L' look resolved (hrm__resolved5) */
+} hrm__nsi;
+
+typedef struct hrm__gki {
+    hrm__iv h;
+    hrm__gk_io io; /* ends, check sample, centre */
+} hrm__gki;
 
 /* The worst-first drivers' storage: nested Simpson's intervals and their
    samples; global Gauss-Kronrod's intervals. Held (hrm__stage) only by
    the solves that run them. */
 typedef struct hrm__ns_store {
-    hrm__iv iv[HRM_NS_INTERVALS];
+    hrm__nsi iv[HRM_NS_INTERVALS];
     hrm__pt pool[4 * HRM_NS_INTERVALS + 1];
 } hrm__ns_store;
 
 typedef struct hrm__gk_store {
-    hrm__iv iv[HRM_GK_INTERVALS];
+    hrm__gki iv[HRM_GK_INTERVALS];
 } hrm__gk_store;
 
+/* The driver's own part of interval v. */
+#define HRM__NSI(v) ((hrm__nsi *)(void *)(v))
+#define HRM__GKI(v) ((hrm__gki *)(void *)(v))
+
 typedef struct hrm__wf {
-    hrm__iv *iv;
+    unsigned char *iv; /* the driver's intervals (hrm__nsi or hrm__gki) */
+    size_t stride;     /* their size */
     int n, cap;   /* intervals held, storage */
     hrm__pt *pool; /* nested Simpson's samples (0: Gauss-Kronrod) */
     int np, end;  /* samples held; the index of the ray's end sample */
 } hrm__wf;
+
+/* Interval i's shared part. */
+static HRM_DEVICE hrm__iv *hrm__wf_at(const hrm__wf *w, int i)
+{
+    return (hrm__iv *)(void *)(w->iv + (size_t)i * w->stride);
+}
 
 /* The interval's increments and estimates by its rule. */
 static HRM_DEVICE HRM__CALL void hrm__wf_rule(hrm__ctx *c, hrm__wf *w, hrm__iv *v, int b_sample)
@@ -6328,11 +6348,13 @@ static HRM_DEVICE HRM__CALL void hrm__wf_rule(hrm__ctx *c, hrm__wf *w, hrm__iv *
     hrm__fill(zero, HRM__NY, 0);
     if (w->pool) {
         hrm__pt *P = w->pool;
-        hrm__ns_five(c, &P[v->s[0]], &P[v->s[1]], &P[v->s[2]], &P[v->s[3]], &P[b_sample], zero,
-                     v->V, v->E, v->M, v->resolved);
+        const int *s = HRM__NSI(v)->s;
+        hrm__ns_five(c, &P[s[0]], &P[s[1]], &P[s[2]], &P[s[3]], &P[b_sample], zero, v->V, v->E, v->M,
+                     HRM__NSI(v)->resolved);
     } else {
-        hrm__gk(c, v->a, v->b, zero, v->V, v->E, &v->io);
-        memcpy(v->M, v->io.M, sizeof v->M);
+        hrm__gk_io *io = &HRM__GKI(v)->io;
+        hrm__gk(c, v->a, v->b, zero, v->V, v->E, io);
+        memcpy(v->M, io->M, sizeof v->M);
     }
     for (i = 0; i < HRM__NY; ++i) {
         v->D[i] = v->E[i] = HRM_FABS(v->E[i]);
@@ -6400,9 +6422,9 @@ static HRM_DEVICE HRM__CALL void hrm__wf_trust(const hrm__ctx *c, const hrm__iv 
             q = q < cap ? q : cap;
         }
         fl = 16 * HRM__EPS * HRM_FABS(l->V[j]);
-        if (!square || j < HRM__CH || l->resolved[j - HRM__CH]) l->E[j] = l->D[j] * q > fl ? l->D[j] * q : fl;
+        if (!square || j < HRM__CH || HRM__NSI(l)->resolved[j - HRM__CH]) l->E[j] = l->D[j] * q > fl ? l->D[j] * q : fl;
         fl = 16 * HRM__EPS * HRM_FABS(r->V[j]);
-        if (!square || j < HRM__CH || r->resolved[j - HRM__CH]) r->E[j] = r->D[j] * q > fl ? r->D[j] * q : fl;
+        if (!square || j < HRM__CH || HRM__NSI(r)->resolved[j - HRM__CH]) r->E[j] = r->D[j] * q > fl ? r->D[j] * q : fl;
         if (!square && j >= HRM__CH && q > HRM__R(1.0) / 64 && l->D[j] + r->D[j] > 0) {
             /* Gauss-Kronrod whose K missed by more than 1/64 of |K - G|:
                the halves hold at least a quarter of that miss, shared as
@@ -6464,57 +6486,67 @@ static HRM_DEVICE HRM__CALL void hrm__wf_rough(hrm__ctx *c, const hrm__iv *par, 
    keep the five samples and add their quarter points (4 evaluations). */
 static HRM_DEVICE HRM__CALL void hrm__wf_split(hrm__ctx *c, hrm__wf *w, int k)
 {
-    hrm__iv par = w->iv[k], *l = &w->iv[k], *r = &w->iv[k + 1];
-    int j, b_sample = k + 1 < w->n ? w->iv[k + 1].s[0] : w->end;
-    for (j = w->n; j > k + 1; --j) w->iv[j] = w->iv[j - 1];
+    union {
+        hrm__nsi ns;
+        hrm__gki gk;
+    } pu; /* the parent, whole */
+    hrm__iv *l = hrm__wf_at(w, k), *r = hrm__wf_at(w, k + 1), par;
+    int j, b_sample = w->pool && k + 1 < w->n ? HRM__NSI(r)->s[0] : w->end;
+    memcpy(&pu, l, w->stride);
+    par = pu.ns.h;
+    for (j = w->n; j > k + 1; --j) /* memmove is host-only in CUDA */
+        memcpy(hrm__wf_at(w, j), hrm__wf_at(w, j - 1), w->stride);
     w->n++;
     l->a = par.a;
     l->b = r->a = (par.a + par.b) / 2;
     r->b = par.b;
     if (w->pool) {
         hrm__pt *P = w->pool;
-        int q = w->np;
+        const int *ps = pu.ns.s;
+        int *ls = HRM__NSI(l)->s, *rs = HRM__NSI(r)->s, q = w->np;
         w->np += 4;
-        hrm__eval(c, (P[par.s[0]].p + P[par.s[1]].p) / 2, &P[q]);
-        hrm__eval(c, (P[par.s[1]].p + P[par.s[2]].p) / 2, &P[q + 1]);
-        hrm__eval(c, (P[par.s[2]].p + P[par.s[3]].p) / 2, &P[q + 2]);
-        hrm__eval(c, (P[par.s[3]].p + P[b_sample].p) / 2, &P[q + 3]);
-        l->s[0] = par.s[0];
-        l->s[1] = q;
-        l->s[2] = par.s[1];
-        l->s[3] = q + 1;
-        r->s[0] = par.s[2];
-        r->s[1] = q + 2;
-        r->s[2] = par.s[3];
-        r->s[3] = q + 3;
-        hrm__wf_rule(c, w, l, par.s[2]);
+        hrm__eval(c, (P[ps[0]].p + P[ps[1]].p) / 2, &P[q]);
+        hrm__eval(c, (P[ps[1]].p + P[ps[2]].p) / 2, &P[q + 1]);
+        hrm__eval(c, (P[ps[2]].p + P[ps[3]].p) / 2, &P[q + 2]);
+        hrm__eval(c, (P[ps[3]].p + P[b_sample].p) / 2, &P[q + 3]);
+        ls[0] = ps[0];
+        ls[1] = q;
+        ls[2] = ps[1];
+        ls[3] = q + 1;
+        rs[0] = ps[2];
+        rs[1] = q + 2;
+        rs[2] = ps[3];
+        rs[3] = q + 3;
+        hrm__wf_rule(c, w, l, ps[2]);
         hrm__wf_rule(c, w, r, b_sample);
         hrm__wf_trust(c, &par, l, r, HRM__R(1.0) / 8, HRM__R(0.2), 1);
     } else {
         /* the parent's centre node is the halves' common end; a check
            sample the parent left unexplained, else its node of the
            largest source, checks the half it falls in */
+        const hrm__gk_io *pio = &pu.gk.io;
+        hrm__gk_io *lio = &HRM__GKI(l)->io, *rio = &HRM__GKI(r)->io;
         hrm__iv *h[2];
         int e;
         h[0] = l;
         h[1] = r;
-        memcpy(l->io.Sb, par.io.Sm, sizeof par.io.Sm);
-        memcpy(r->io.Sa, par.io.Sm, sizeof par.io.Sm);
-        memcpy(r->io.Sb, par.io.Sb, sizeof par.io.Sb);
-        l->io.hb = r->io.ha = 1;
-        r->io.hb = par.io.hb;
+        memcpy(lio->Sb, pio->Sm, sizeof pio->Sm);
+        memcpy(rio->Sa, pio->Sm, sizeof pio->Sm);
+        memcpy(rio->Sb, pio->Sb, sizeof pio->Sb);
+        lio->hb = rio->ha = 1;
+        rio->hb = pio->hb;
         for (e = 0; e < 2; ++e) {
-            hrm__gk_io *o = &h[e]->io;
+            hrm__gk_io *o = &HRM__GKI(h[e])->io;
             o->hc = 0;
-            if (par.io.hc && par.io.unexplained &&
-                (par.io.xc - h[e]->a) * (par.io.xc - h[e]->b) < 0) {
+            if (pio->hc && pio->unexplained &&
+                (pio->xc - h[e]->a) * (pio->xc - h[e]->b) < 0) {
                 o->hc = 1;
-                o->xc = par.io.xc;
-                memcpy(o->gqc, par.io.gqc, sizeof o->gqc);
-            } else if ((par.io.xm - h[e]->a) * (par.io.xm - h[e]->b) < 0) {
+                o->xc = pio->xc;
+                memcpy(o->gqc, pio->gqc, sizeof o->gqc);
+            } else if ((pio->xm - h[e]->a) * (pio->xm - h[e]->b) < 0) {
                 o->hc = 1;
-                o->xc = par.io.xm;
-                memcpy(o->gqc, par.io.gqm, sizeof o->gqc);
+                o->xc = pio->xm;
+                memcpy(o->gqc, pio->gqm, sizeof o->gqc);
             }
         }
         hrm__wf_rule(c, w, l, 0);
@@ -6556,7 +6588,7 @@ static HRM_DEVICE HRM__CALL int hrm__wf_sum(hrm__ctx *c, hrm__wf *w, hrm_real ac
             hrm__fill(Et, HRM__CH, 0);
         }
         for (i = 0; i < w->n; ++i) {
-            hrm__iv *v = &w->iv[i];
+            hrm__iv *v = hrm__wf_at(w, i);
             hrm_real score = 0;
             for (ch = 0; ch < HRM__CH; ++ch) {
                 hrm_real f = c->closed ? 1 : HRM_EXP(-tau[ch]);
@@ -6595,7 +6627,7 @@ static HRM_DEVICE HRM__CALL int hrm__wf_sum(hrm__ctx *c, hrm__wf *w, hrm_real ac
     }
     /* the first interval within a millionth of the worst score */
     for (i = 0; i < w->n; ++i)
-        if (w->iv[i].score >= worst * (1 - HRM__R(1e-6))) {
+        if (hrm__wf_at(w, i)->score >= worst * (1 - HRM__R(1e-6))) {
             *pick = i;
             break;
         }
@@ -6611,8 +6643,8 @@ static HRM_DEVICE HRM__CALL int hrm__worst_first(hrm__ctx *c, hrm__wf *w, hrm_re
         hrm__iv par;
         if (c->status != HRM_OK) return 0;
         if (hrm__wf_sum(c, w, acc, &k)) return 0;
-        if (HRM_FABS(w->iv[k].b - w->iv[k].a) / (w->pool ? 8 : 2) < c->h_min ||
-            (!w->pool && !hrm__gk_resolved(c, w->iv[k].a, w->iv[k].b))) {
+        if (HRM_FABS(hrm__wf_at(w, k)->b - hrm__wf_at(w, k)->a) / (w->pool ? 8 : 2) < c->h_min ||
+            (!w->pool && !hrm__gk_resolved(c, hrm__wf_at(w, k)->a, hrm__wf_at(w, k)->b))) {
             hrm__warn(c, hrm__h_min_status(c)); /* the worst interval is at h_min */
             return 0;
         }
@@ -6621,7 +6653,7 @@ static HRM_DEVICE HRM__CALL int hrm__worst_first(hrm__ctx *c, hrm__wf *w, hrm_re
             hrm__warn(c, HRM_WARN_MAX_EVALS);
             return 0;
         }
-        par = w->iv[k];
+        par = *hrm__wf_at(w, k);
         hrm__wf_split(c, w, k);
         c->stats.steps++;
         c->stats.rejected++;
@@ -6629,7 +6661,7 @@ static HRM_DEVICE HRM__CALL int hrm__worst_first(hrm__ctx *c, hrm__wf *w, hrm_re
         /* Round-off (QUADPACK qag): the halves reproduce the parent's value
            while their error does not drop. */
         for (ch = 0; ch < HRM__CH; ++ch) {
-            const hrm__iv *l = &w->iv[k], *r = &w->iv[k + 1];
+            const hrm__iv *l = hrm__wf_at(w, k), *r = hrm__wf_at(w, k + 1);
             hrm_real f = c->closed ? 1 : HRM_EXP(-l->V[ch]); /* r is relative to its left end */
             hrm_real sum = l->V[HRM__CH + ch] + f * r->V[HRM__CH + ch];
             hrm_real esum = l->D[HRM__CH + ch] + f * r->D[HRM__CH + ch];
@@ -6667,26 +6699,27 @@ static HRM_DEVICE void hrm__finish_scale(hrm__ctx *c, const hrm_real *tot, hrm_r
    in HRM_GK_INTERVALS, then each is finished left to right. */
 static HRM_DEVICE HRM__CALL void hrm__gk_global(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
 {
-    hrm__iv *iv = c->gks->iv;
+    hrm__gki *iv = c->gks->iv;
     hrm__wf w;
     hrm_real span = c->pb - c->pa, S[2][HRM__CH], tot[HRM__NY];
     int i, has[2];
 
-    w.iv = iv;
+    w.iv = (unsigned char *)(void *)iv;
+    w.stride = sizeof *iv;
     w.cap = HRM_GK_INTERVALS;
     w.n = n0 < HRM_GK_INTERVALS ? n0 : HRM_GK_INTERVALS;
     w.pool = 0;
     w.np = w.end = 0;
     hrm__gk_ends(c, S, has);
     for (i = 0; i < w.n; ++i) {
-        iv[i].a = c->pa + span * ((hrm_real)i / (hrm_real)w.n);
-        iv[i].b = i + 1 == w.n ? c->pb : c->pa + span * ((hrm_real)(i + 1) / (hrm_real)w.n);
+        iv[i].h.a = c->pa + span * ((hrm_real)i / (hrm_real)w.n);
+        iv[i].h.b = i + 1 == w.n ? c->pb : c->pa + span * ((hrm_real)(i + 1) / (hrm_real)w.n);
         iv[i].io.ha = i == 0;
         iv[i].io.hb = i + 1 == w.n && has[1];
         iv[i].io.hc = 0;
         memcpy(iv[i].io.Sa, S[0], sizeof S[0]);
         memcpy(iv[i].io.Sb, S[1], sizeof S[1]);
-        hrm__wf_rule(c, &w, &iv[i], 0);
+        hrm__wf_rule(c, &w, &iv[i].h, 0);
         c->stats.steps++;
     }
     if (!hrm__worst_first(c, &w, tot)) {
@@ -6697,7 +6730,7 @@ static HRM_DEVICE HRM__CALL void hrm__gk_global(hrm__ctx *c, int n0, hrm_real ac
        scale of the total found */
     hrm__finish_scale(c, tot, acc);
     for (i = 0; i < w.n && c->status == HRM_OK; ++i)
-        hrm__gk_local_one(c, iv[i].a, iv[i].b, iv[i].V, iv[i].E, iv[i].io.ha ? iv[i].io.Sa : 0,
+        hrm__gk_local_one(c, iv[i].h.a, iv[i].h.b, iv[i].h.V, iv[i].h.E, iv[i].io.ha ? iv[i].io.Sa : 0,
                           iv[i].io.hb ? iv[i].io.Sb : 0, acc);
 }
 
@@ -6708,14 +6741,15 @@ static HRM_DEVICE HRM__CALL void hrm__gk_global(hrm__ctx *c, int n0, hrm_real ac
    finished left to right from its two halves. */
 static HRM_DEVICE HRM__CALL void hrm__nested_simpson(hrm__ctx *c, int panels, hrm_real acc[HRM__NY])
 {
-    hrm__iv *iv = c->ns->iv;
+    hrm__nsi *iv = c->ns->iv;
     hrm__pt *pool = c->ns->pool;
     hrm__wf w;
     hrm_real span = c->pb - c->pa, tot[HRM__NY];
     int k, i;
 
     if (panels > HRM_NS_PANELS) panels = HRM_NS_PANELS;
-    w.iv = iv;
+    w.iv = (unsigned char *)(void *)iv;
+    w.stride = sizeof *iv;
     w.cap = HRM_NS_INTERVALS;
     w.n = panels;
     w.pool = pool;
@@ -6725,10 +6759,10 @@ static HRM_DEVICE HRM__CALL void hrm__nested_simpson(hrm__ctx *c, int panels, hr
         hrm__eval(c, k == 4 * panels ? c->pb
                      : c->pa + span * ((hrm_real)k / (hrm_real)(4 * panels)), &pool[k]);
     for (k = 0; k < panels; ++k) {
-        iv[k].a = pool[4 * k].p;
-        iv[k].b = pool[4 * k + 4].p;
+        iv[k].h.a = pool[4 * k].p;
+        iv[k].h.b = pool[4 * k + 4].p;
         for (i = 0; i < 4; ++i) iv[k].s[i] = 4 * k + i;
-        hrm__wf_rule(c, &w, &iv[k], 4 * k + 4);
+        hrm__wf_rule(c, &w, &iv[k].h, 4 * k + 4);
         c->stats.steps++;
     }
     if (!hrm__worst_first(c, &w, tot)) {
@@ -6739,7 +6773,7 @@ static HRM_DEVICE HRM__CALL void hrm__nested_simpson(hrm__ctx *c, int panels, hr
        finished left to right from its halves */
     hrm__finish_scale(c, tot, acc);
     for (k = 0; k < w.n && c->status == HRM_OK; ++k) {
-        const hrm__iv *v = &iv[k];
+        const hrm__nsi *v = &iv[k];
         const hrm__pt *P = pool;
         int b = k + 1 < w.n ? iv[k + 1].s[0] : w.end;
         hrm_real V[HRM__NY], E[HRM__NY], y1[HRM__NY], M[HRM__CH];
@@ -6749,7 +6783,7 @@ static HRM_DEVICE HRM__CALL void hrm__nested_simpson(hrm__ctx *c, int panels, hr
             E[i] /= 5;
         }
         hrm__with_miss(E, M);
-        if (hrm__ratio(c, HRM_CONTROL_PI, v->a, v->b, acc, y1, E) <= 1) {
+        if (hrm__ratio(c, HRM_CONTROL_PI, v->h.a, v->h.b, acc, y1, E) <= 1) {
             memcpy(acc, y1, sizeof y1);
             hrm__accepted(c, E);
         } else {

@@ -66,19 +66,18 @@
    without the jump search: its worst-first storage, then its left-to-
    right finish), bytes beyond the baseline:
                       double 3 ch   double 8 ch   float 3 ch   float 8 ch
-     gcc -O0              109608        240968        56480       120832
-     gcc -O2              109368        238936        56184       120752
-     clang -O2            124184        272224        66392       140392
-   The largest build is clang -O2 (it inlines the adaptive drivers into
-   one frame: the Runge-Kutta pairs take 103 KB there, 36 KB with gcc),
-   not gcc -O0; a limit of 1.5 times gcc -O0's 3-channel figure alone
-   would not hold with 8 channels. So the limit is about 1.5 times the
-   largest build in each configuration (1.58 times clang -O2's in double
-   with 3 and 8 channels, 1.48 and 1.58 in float; 1.79 times gcc -O0's
-   with 3), rounded up to 48 KiB steps: room for another compiler's
-   inlining and a few more locals, while an array added to the solve's
-   context or a driver's storage (HRM_GK_INTERVALS, HRM_NS_INTERVALS,
-   HRM_TAU_PANELS) shows here. */
+     gcc -O0               94680        212136        49592       108744
+     gcc -O2               94360        211976        49336       108360
+     clang -O2             96696        215520        50528       110352
+   The largest build is clang -O2 (it inlines more of the drivers into
+   one frame), not gcc -O0; a limit of 1.5 times gcc -O0's 3-channel
+   figure alone would not hold with 8 channels. So the limit is about
+   twice the largest build in each configuration (2.03 times clang -O2's
+   in double with 3 channels, 2.05 with 8, 1.95 and 2.0 in float),
+   rounded up to 48 KiB steps: room for another compiler's inlining and a
+   few more locals, while an array added to the solve's context or a
+   driver's storage (HRM_GK_INTERVALS, HRM_NS_INTERVALS, HRM_TAU_PANELS)
+   shows here. */
 #ifndef STACK_LIMIT /* (-DSTACK_LIMIT=...: to measure a build past it) */
 #define STACK_LIMIT ((48L + 48L * NCH) * 1024L * (long)sizeof(hrm_real) / 8)
 #endif
