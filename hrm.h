@@ -4809,6 +4809,16 @@ static HRM_DEVICE void hrm__gap_miss(const hrm_real *x, const hrm_real *r, const
                                      int n, hrm_real hl, hrm_real factor, int edges, hrm_real *m)
 {
     int j;
+    if (!tau) {
+        /* no neighbours more than factor apart if no two values are (the
+           common case, decided at once) */
+        hrm_real mn = r[0], mx = r[0];
+        for (j = 1; j < n; ++j) {
+            mn = r[j] < mn ? r[j] : mn;
+            mx = r[j] > mx ? r[j] : mx;
+        }
+        if (!(mx > 0) || (mn > 0 && factor * mn >= mx)) return;
+    }
     for (j = 0; j + 1 < n; ++j) {
         hrm_real hi = r[j] > r[j + 1] ? r[j] : r[j + 1], lo = r[j] > r[j + 1] ? r[j + 1] : r[j], gap;
         int at_edge = r[j] < r[j + 1] ? j == 0 && (edges & 1) : j + 2 == n && (edges & 2);
@@ -6578,52 +6588,56 @@ static HRM_DEVICE HRM__CALL int hrm__wf_sum(hrm__ctx *c, hrm__wf *w, hrm_real ac
 {
     hrm_real tau[HRM__CH], L[HRM__CH], EL[HRM__CH], Et[HRM__CH], tolL[HRM__CH], tolt[HRM__CH];
     hrm_real worst = -1;
-    int i, ch, pass, done = 1;
+    int i, ch, done = 1;
     *pick = -1;
-    for (pass = 0; pass < 2; ++pass) {
-        hrm__fill(tau, HRM__CH, 0);
-        if (pass == 0) {
-            hrm__fill(L, HRM__CH, 0);
-            hrm__fill(EL, HRM__CH, 0);
-            hrm__fill(Et, HRM__CH, 0);
-        }
-        for (i = 0; i < w->n; ++i) {
-            hrm__iv *v = hrm__wf_at(w, i);
-            hrm_real score = 0;
-            for (ch = 0; ch < HRM__CH; ++ch) {
-                hrm_real f = c->closed ? 1 : HRM_EXP(-tau[ch]);
-                hrm_real eL = f * v->E[HRM__CH + ch], et = f * v->E[ch];
-                tau[ch] += v->V[ch];
-                if (pass == 0) {
-                    L[ch] += f * v->V[HRM__CH + ch];
-                    EL[ch] += eL;
-                    Et[ch] += et;
-                    continue;
-                }
-                eL = tolL[ch] > 0 ? eL / tolL[ch] : eL * HRM__R(1e30);
-                et = tolt[ch] > 0 ? et / tolt[ch] : et * HRM__R(1e30);
-                score = score > eL ? score : eL;
-                score = score > et ? score : et;
-            }
-            if (pass == 1) {
-                v->score = score;
-                if (score > worst) worst = score;
-            }
-        }
-        if (pass > 0) continue;
-        c->wf_tol = 0;
+    hrm__fill(tau, HRM__CH, 0);
+    hrm__fill(L, HRM__CH, 0);
+    hrm__fill(EL, HRM__CH, 0);
+    hrm__fill(Et, HRM__CH, 0);
+    /* the sums (with Tr known at the nodes each interval's factor is 1) */
+    for (i = 0; i < w->n; ++i) {
+        const hrm__iv *v = hrm__wf_at(w, i);
         for (ch = 0; ch < HRM__CH; ++ch) {
-            hrm_real t = HRM_FABS(tau[ch]) < 1 ? HRM_FABS(tau[ch]) : 1;
-            tolL[ch] = c->rtol * HRM_FABS(L[ch]);
-            tolL[ch] = tolL[ch] > c->atol ? tolL[ch] : c->atol;
-            tolt[ch] = c->rtol * t;
-            done &= EL[ch] <= tolL[ch] && Et[ch] <= tolt[ch];
-            c->wf_tol += tolL[ch];
-            acc[ch] = tau[ch];
-            acc[HRM__CH + ch] = L[ch];
-            c->err_acc[ch] = EL[ch]; /* the estimate of what it returns */
+            hrm_real f = c->closed ? 1 : HRM_EXP(-tau[ch]);
+            tau[ch] += v->V[ch];
+            L[ch] += f * v->V[HRM__CH + ch];
+            EL[ch] += f * v->E[HRM__CH + ch];
+            Et[ch] += f * v->E[ch];
         }
-        if (done) return 1;
+    }
+    c->wf_tol = 0;
+    for (ch = 0; ch < HRM__CH; ++ch) {
+        hrm_real t = HRM_FABS(tau[ch]) < 1 ? HRM_FABS(tau[ch]) : 1;
+        tolL[ch] = c->rtol * HRM_FABS(L[ch]);
+        tolL[ch] = tolL[ch] > c->atol ? tolL[ch] : c->atol;
+        tolt[ch] = c->rtol * t;
+        done &= EL[ch] <= tolL[ch] && Et[ch] <= tolt[ch];
+        c->wf_tol += tolL[ch];
+        acc[ch] = tau[ch];
+        acc[HRM__CH + ch] = L[ch];
+        c->err_acc[ch] = EL[ch]; /* the estimate of what it returns */
+    }
+    if (done) return 1;
+    /* the scores */
+    hrm__fill(tau, HRM__CH, 0);
+    for (i = 0; i < w->n; ++i) {
+        hrm__iv *v = hrm__wf_at(w, i);
+        hrm_real score = 0;
+        for (ch = 0; ch < HRM__CH; ++ch) {
+            hrm_real eL = v->E[HRM__CH + ch], et = v->E[ch];
+            if (!c->closed) {
+                hrm_real f = HRM_EXP(-tau[ch]);
+                tau[ch] += v->V[ch];
+                eL *= f;
+                et *= f;
+            }
+            eL = tolL[ch] > 0 ? eL / tolL[ch] : eL * HRM__R(1e30);
+            et = tolt[ch] > 0 ? et / tolt[ch] : et * HRM__R(1e30);
+            score = score > eL ? score : eL;
+            score = score > et ? score : et;
+        }
+        v->score = score;
+        if (score > worst) worst = score;
     }
     /* the first interval within a millionth of the worst score */
     for (i = 0; i < w->n; ++i)
