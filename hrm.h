@@ -820,7 +820,8 @@ typedef struct hrm_result {
 } hrm_result;
 
 /* The defaults of `method`: what an all-zero hrm_options means, with the
-   method set. */
+   method set (HRM_METHOD_DEFAULT kept: nested Simpson's defaults for
+   hrm_solve, the shadow-ray estimator for hrm_transmittance). */
 HRM_API HRM_DEVICE hrm_options hrm_default_options(hrm_method method);
 
 /* The bytes options.workspace must hold for a solve with these options
@@ -6837,10 +6838,13 @@ HRM__DEF HRM_DEVICE int hrm_version(void)
 HRM__DEF HRM_DEVICE hrm_options hrm_default_options(hrm_method method)
 {
     hrm_options o;
+    /* method 0 stays 0 (hrm_solve: nested Simpson, whose defaults these
+       are; hrm_transmittance: the shadow-ray estimator) */
+    hrm_method m = method == HRM_METHOD_DEFAULT ? HRM_NESTED_SIMPSON : method;
     memset(&o, 0, sizeof o);
-    o.method = method == HRM_METHOD_DEFAULT ? HRM_NESTED_SIMPSON : method;
-    if ((int)o.method > 0 && (int)o.method < (int)HRM_METHOD_COUNT)
-        o.steps = hrm__methods[o.method].steps;
+    o.method = method;
+    if ((int)m > 0 && (int)m < (int)HRM_METHOD_COUNT)
+        o.steps = hrm__methods[m].steps;
     o.form = HRM_FORM_OPTICAL_DEPTH;
     o.rtol = HRM__R(1e-3);
     o.max_evals = 100000;
@@ -6849,9 +6853,9 @@ HRM__DEF HRM_DEVICE hrm_options hrm_default_options(hrm_method method)
     /* the analytic march takes sigma_t at its samples, as renderers do;
        the other fixed-step methods are resolved with the warp (coupled
        without one: hrm__resolve), the adaptive ones decoupled */
-    if ((int)o.method > 0 && (int)o.method < (int)HRM_METHOD_COUNT) /* (an unknown one: hrm__resolve) */
-        o.tau_mode = hrm__methods[o.method].driver == HRM__DRV_MARCH ? HRM_TAU_COUPLED
-                   : hrm__methods[o.method].family <= HRM__FIXED_IVP ? HRM_TAU_DEFAULT
+    if ((int)m > 0 && (int)m < (int)HRM_METHOD_COUNT) /* (an unknown one: hrm__resolve) */
+        o.tau_mode = hrm__methods[m].driver == HRM__DRV_MARCH ? HRM_TAU_COUPLED
+                   : hrm__methods[m].family <= HRM__FIXED_IVP ? HRM_TAU_DEFAULT
                    : HRM_TAU_DECOUPLED;
     else
         o.tau_mode = HRM_TAU_DECOUPLED;
@@ -6938,7 +6942,7 @@ static HRM_DEVICE long hrm__piece_cost(const hrm_options *o, long n)
 
 static HRM_DEVICE HRM__CALL hrm_status hrm__resolve(const hrm_options *in, hrm_options *o, int tau_in_t)
 {
-    hrm_options d = hrm_default_options(in ? in->method : HRM_METHOD_DEFAULT);
+    hrm_options d = hrm_default_options(in && in->method != HRM_METHOD_DEFAULT ? in->method : HRM_NESTED_SIMPSON);
     const hrm__method_info *mi;
     int estimator = tau_in_t && !(in && in->method != HRM_METHOD_DEFAULT); /* (its budget: its own) */
     if (!in) {

@@ -292,7 +292,7 @@ static int fz_run(const uint8_t *data, size_t size)
         if (!rte && nonneg && L < 0) return printf("L %g < 0\n", L), 6;
     }
     if (fm.outside) return printf("%ld callbacks outside [t0, t1] or at a non-finite t\n", fm.outside), 7;
-    adaptive = o.method == HRM_NESTED_SIMPSON || o.method == HRM_GAUSS_KRONROD ||
+    adaptive = o.method == HRM_METHOD_DEFAULT || o.method == HRM_NESTED_SIMPSON || o.method == HRM_GAUSS_KRONROD ||
                o.method == HRM_BOGACKI_SHAMPINE || o.method == HRM_DORMAND_PRINCE ||
                o.method == HRM_FEHLBERG || o.method == HRM_CASH_KARP || o.method == HRM_VERNER;
     if (adaptive && o.max_evals > 0 && g.r.stats.evals > o.max_evals)

@@ -609,7 +609,7 @@ static int bi_in_set(int set, hrm_method m)
     case S_FIXED: return !is_adaptive(m);
     case S_ADAPTIVE: return is_adaptive(m);
     case S_SIMPSON: return m == HRM_SIMPSON;
-    case S_DEFAULT: return m == hrm_default_options(HRM_METHOD_DEFAULT).method; /* what NULL means */
+    case S_DEFAULT: return m == HRM_NESTED_SIMPSON; /* what NULL and method 0 mean */
     case S_RTE: return is_ivp(m) || is_pair(m);
     case S_NOFIT: return m != HRM_SIMPSON && m != HRM_GAUSS_KRONROD && !is_pair(m);
     default: return 1;

@@ -1504,7 +1504,10 @@ static void test_defaults(void)
     CHECK_INT(hrm_solve(&med, 1, 5, &d, &rd), HRM_OK, "hrm_default_options(DEFAULT): status");
     /* the default method is nested Simpson at rtol 1e-3 (what make
        render's three scenes pick: the manual's DEFAULTS) */
-    CHECK_INT(d.method, HRM_NESTED_SIMPSON, "the default method: nested Simpson");
+    CHECK_INT(d.method, HRM_METHOD_DEFAULT, "hrm_default_options(HRM_METHOD_DEFAULT) keeps method 0");
+    CHECK(d.steps == hrm_default_options(HRM_NESTED_SIMPSON).steps &&
+              d.tau_mode == hrm_default_options(HRM_NESTED_SIMPSON).tau_mode,
+          "the default method's options: nested Simpson's");
     CHECK(d.rtol == (hrm_real)1e-3, "the default rtol: 1e-3");
     CHECK(same_result(&rn, &rz), "options NULL and all-zero options agree bit for bit");
     CHECK(same_result(&rn, &rs), "options NULL and nested Simpson at rtol 1e-3 agree bit for bit");

@@ -1479,6 +1479,21 @@ static void tr_shadow_estimator(void)
                       "cut-off: Tr(t0, t_cut) %g within 1.5 tr_tol cutoff of %g", (double)trc[c], at);
             }
             CHECK(stc.medium_evals < without, "cut-off: %ld lookups, %ld without", stc.medium_evals, without);
+            {
+                /* hrm_default_options(HRM_METHOD_DEFAULT) keeps method 0:
+                   the estimator, its cut-off honoured (it had named nested
+                   Simpson, which ignored both cut-off and tr_tol) */
+                hrm_options d = hrm_default_options(HRM_METHOD_DEFAULT);
+                hrm_real trd[NCH];
+                hrm_stats std_;
+                int same = 1;
+                d.cutoff = (hrm_real)1e-3;
+                CHECK_INT(hrm_transmittance(&ms, 0.5, 30.5, &d, trd, &std_), HRM_OK, "default options, cut-off: status");
+                for (c = 0; c < NCH; ++c) same &= trd[c] == trc[c];
+                CHECK(same && std_.t_cut == stc.t_cut && std_.medium_evals == stc.medium_evals,
+                      "hrm_default_options(HRM_METHOD_DEFAULT) with a cut-off: the estimator's answer (t_cut %g, %g)",
+                      (double)std_.t_cut, (double)stc.t_cut);
+            }
         }
         /* segments: a long thick ray at a tight tolerance fills the
            panels' storage (the segment ends at its middle panel, the next
