@@ -457,11 +457,11 @@
    sigma_t by Simpson panels in t, the worst first, to
        |Tr - exact| <= tr_tol max(Tr, cutoff)      (tr_tol 0: 1e-3),
    a run of panels' error the larger of |sum e| and 2 sqrt(sum e^2), e a
-   panel's S2 - S1 (at least the 4th difference its samples predict). It
-   starts with 4 panels (17 lookups), none wider than medium.feature where
-   given. cutoff > 0: segments left to right, ending once every channel's
-   Tr is below it (that Tr returned, stats.t_cut where; shadow.md measures
-   it). A named method, or an infinite ray, integrates as hrm_solve.
+   panel's S2 - S1 (at least its samples' predicted 4th difference), on
+   segments between options.breaks, each from 4 panels (17 lookups), none
+   wider than medium.feature where given. cutoff > 0: segments left to
+   right, ending once every channel's Tr is below it (that Tr returned,
+   stats.t_cut where). A named method or infinite ray: as hrm_solve.
 
    ==========================================================================
    NOT DONE BY hrm: tracing rays, sampling lights, phase functions (Li is
@@ -7996,8 +7996,11 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__finish(hrm__ctx *c, const hrm_option
    panels no wider than it (a slab between the first samples is not seen);
    the first is the ray (with a cut-off, a quarter of it), each next sized
    to start as a quarter of the storage's worth of panels at the density the
-   last one needed; where HRM_SHADOW_PANELS fill, the segment ends at its
-   middle panel (the right half's samples given up). The march stops after
+   last one needed, and none past a breakpoint (options.breaks: a slab
+   given only by its edges, between the first samples, had left Tr near 1
+   with HRM_OK), sigma_t sampled on each side of it; where
+   HRM_SHADOW_PANELS fill, the segment ends at its middle panel (the
+   right half's samples given up). The march stops after
    the segment where every channel's Tr falls below the cut-off or
    underflows. Panels narrower than twice h_min (64 eps of the ray's reach)
    are not split; where none can be, or past max_evals medium evaluations,
@@ -8080,6 +8083,14 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__shadow_march(hrm__ctx *c, co
         if (feature > 0 && len > HRM_SHADOW_PANELS / 2 * feature) len = HRM_SHADOW_PANELS / 2 * feature;
         b = a + len;
         if (!(b < T) || T - b < hmin) b = T;
+        /* a segment ends at a breakpoint (sigma_t may jump there: its
+           samples on each side); the next starts from it */
+        for (k = 0; k < c->nbrk; ++k)
+            if (c->brk_off[k] > a && c->brk_off[k] < b) {
+                b = c->brk_off[k];
+                break;
+            }
+        if (a > 0 && hrm__is_break(c, a)) hrm__sigma_t_at(c, a, 1, p[0].f[0]);
         if (feature > 0 && (b - a) / feature > (hrm_real)np) {
             np = (int)((b - a) / feature);
             if ((hrm_real)np * feature < b - a && np < HRM_SHADOW_PANELS / 2) ++np;
@@ -8089,7 +8100,10 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__shadow_march(hrm__ctx *c, co
             p[k].a = a + (b - a) * (hrm_real)k / (hrm_real)np;
             p[k].h = (k + 1 == np ? b : a + (b - a) * (hrm_real)(k + 1) / (hrm_real)np) - p[k].a;
             if (k > 0) memcpy(p[k].f[0], p[k - 1].f[4], sizeof p[0].f[0]);
-            for (j = 1; j <= 4; ++j) hrm__sigma_t_at(c, p[k].a + p[k].h * (hrm_real)j / 4, 0, p[k].f[j]);
+            for (j = 1; j <= 4; ++j) {
+                int left = j == 4 && k + 1 == np && hrm__is_break(c, b); /* sigma_t before it */
+                hrm__sigma_t_at(c, left ? b : p[k].a + p[k].h * (hrm_real)j / 4, -left, p[k].f[j]);
+            }
             hrm__panel_set(&p[k]);
         }
         c->stats.steps += np;

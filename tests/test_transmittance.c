@@ -1349,6 +1349,15 @@ static double tr_slab_tau(double a, double b)
     return 0.1 * (b - a) + (hi > lo ? 3.9 * (hi - lo) : 0);
 }
 
+/* A thin slab (sigma_t 32 on [2.25, 2.3125), 0.1 elsewhere: edges exact
+   in float) that the estimator's first samples on [0, 10] straddle. */
+static void tr_thin_st(void *u, hrm_real t, hrm_real out[NCH])
+{
+    int c;
+    ((tr_slab *)u)->n++;
+    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)(t >= (hrm_real)2.25 && t < (hrm_real)2.3125 ? 32.0 : 0.1);
+}
+
 /* The sine medium of the scenes (scene_init) as one sigma callback. */
 static hrm_medium tr_sine_one(scene *sc)
 {
@@ -1459,6 +1468,30 @@ static void tr_shadow_estimator(void)
         for (c = 0; c < NCH; ++c)
             if (fabs((double)tr[c] - want) / want > e) e = fabs((double)tr[c] - want) / want;
         CHECK(e <= 1e-3, "slab: Tr within tr_tol (%.3g), %ld lookups", e, st.medium_evals);
+        {
+            /* a thin slab given only as breakpoints at its edges (no
+               feature): segments end there, sigma_t sampled on each side
+               (the estimator had ignored options.breaks: Tr that of the
+               background, e^-1 for e^-2.99, with HRM_OK) */
+            tr_slab th = {0};
+            hrm_medium mt;
+            hrm_options ob;
+            hrm_real brk[2], trb[NCH];
+            double wantb = exp(-(0.1 * 10 + 31.9 * 0.0625)), eb = 0;
+            memset(&mt, 0, sizeof mt);
+            mt.user = &th;
+            mt.sigma_t = tr_thin_st;
+            memset(&ob, 0, sizeof ob);
+            brk[0] = (hrm_real)2.25;
+            brk[1] = (hrm_real)2.3125;
+            ob.breaks = brk;
+            ob.nbreaks = 2;
+            CHECK_INT(hrm_transmittance(&mt, 0, 10, &ob, trb, &st), HRM_OK, "slab as breakpoints: status");
+            for (c = 0; c < NCH; ++c)
+                if (fabs((double)trb[c] - wantb) / wantb > eb) eb = fabs((double)trb[c] - wantb) / wantb;
+            /* (first order in tau: |dTr| / Tr = |dtau|; 1.5 tr_tol) */
+            CHECK(eb <= 1.5e-3, "slab as breakpoints: Tr within 1.5 tr_tol (%.3g), %ld lookups", eb, st.medium_evals);
+        }
         /* the cut-off, on the sine medium over [0.5, 30.5] (optical depth
            18 to 45) */
         {
