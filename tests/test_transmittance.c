@@ -1695,6 +1695,15 @@ static void tr_sigma_cutoff(double rtol)
     NOTE("light behind the cut: %d of the adaptive methods warned", warned);
 }
 
+/* A point light's Li, I / (D^2 + (t - delta)^2); user: {delta, D, I}. */
+static void tr_peak_li(void *u, hrm_real t, hrm_real out[NCH])
+{
+    const double *lp = (const double *)u;
+    double x = (double)t - lp[0];
+    int c;
+    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)(lp[2] / (lp[1] * lp[1] + x * x));
+}
+
 /* 13. Early ray termination in hrm_solve (options.cutoff) where Tr has a
    closed form. A homogeneous medium (sigma_t 0.5 to 1 by channel) under
    a constant light on [0, 50]: the solve ends at t_cut = ln(1/cutoff) /
@@ -1763,6 +1772,36 @@ static void tr_camera_cutoff(void)
             CHECK_REL((double)b.Tr[c], (double)a.Tr[c], 64 * real_eps(), "callback: Tr of the whole ray");
         }
         NOTE("callback cut-off: %ld Li calls, %ld without", b.stats.evals, a.stats.evals);
+    }
+    {
+        /* a point light past t_cut (its foot at 12, 0.05 from the ray),
+           constants, the equiangular warp: the remainder's estimate holds
+           the light's peak, sampled once at its foot (the mean S /
+           sigma_t of the part solved had made it 1e5 times short) */
+        static const double lp[3] = {12, 0.05, 1}; /* delta, D, intensity */
+        hrm_medium m;
+        hrm_options ow = hrm_default_options(HRM_NESTED_SIMPSON);
+        hrm_result whole, cut;
+        memset(&m, 0, sizeof m);
+        m.flags = HRM_MEDIUM_HOMOGENEOUS;
+        m.user = (void *)lp;
+        m.Li = tr_peak_li;
+        for (c = 0; c < NCH; ++c) {
+            m.const_sigma_a[c] = (hrm_real)0.3;
+            m.const_sigma_s[c] = (hrm_real)0.4;
+        }
+        ow.rtol = (hrm_real)rtol;
+        ow.warp.kind = HRM_WARP_EQUIANGULAR;
+        ow.warp.delta = (hrm_real)lp[0];
+        ow.warp.D = (hrm_real)lp[1];
+        CHECK_INT(hrm_solve(&m, 0, 20, &ow, &whole), HRM_OK, "light past the cut: the whole ray, status");
+        ow.cutoff = (hrm_real)1e-3;
+        CHECK(hrm_solve(&m, 0, 20, &ow, &cut) >= 0, "light past the cut: status");
+        CHECK((double)cut.stats.t_cut < 12, "light past the cut: t_cut %g before the foot", (double)cut.stats.t_cut);
+        for (c = 0; c < NCH; ++c)
+            CHECK(fabs((double)cut.L[c] - (double)whole.L[c]) <= (double)cut.error[c] + 3 * rtol * (double)whole.L[c],
+                  "light past the cut: L %g within its error %g of the whole ray's %g", (double)cut.L[c],
+                  (double)cut.error[c], (double)whole.L[c]);
     }
     tr_sigma_cutoff(rtol);
 }
