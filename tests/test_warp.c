@@ -1200,6 +1200,37 @@ static void wp_equiangular_edges(void)
                          worst, r.stats.evals);
             }
     }
+    /* A light nearer the ray than t's resolution there, relative to rtol:
+       t places no node, and Li no sample of its profile, nearer than 3.3
+       eps / D of the light's distance; where that exceeds rtol (4 rtol
+       here) every adaptive method warns HRM_WARN_ROUNDOFF (float, a light
+       2.3e-3 from the ray at 17: every method 9 rtol off with HRM_OK), or
+       another warning first; its answer within 16 times that of the
+       exact. */
+    for (mi = 0; mi < N_METHODS_ALL; ++mi) {
+        hrm_method meth = every_method[mi];
+        double rtol = real_is_float() ? 1e-4 : 1e-5, D = 3.3 * real_eps() / (4 * rtol), worst = 0;
+        hrm_warp w;
+        hrm_options o;
+        hrm_medium m;
+        hrm_result r;
+        hrm_status st;
+        if (!is_adaptive(meth)) continue;
+        sc.delta = 3.3;
+        sc.D = D;
+        w = wp_warp(HRM_WARP_EQUIANGULAR, 0, 3.3, D, NULL);
+        o = wp_options(meth, 8, &w);
+        o.rtol = (hrm_real)rtol;
+        m = problem_medium(&p);
+        st = hrm_solve(&m, (hrm_real)0.5, (hrm_real)6.5, &o, &r);
+        CHECK(st > 0, "%s: light at 3.3, D %g (t's resolution there 4 rtol of it): a warning (status %d)",
+              hrm_method_name(meth), D, (int)st);
+        for (c = 0; c < NCH; ++c) {
+            double L0 = wp_exact_point0(sig, sc.I[c], 3.3, D, 0.5, 6.5), d = fabs((double)r.L[c] - L0) / L0;
+            if (!(d <= worst)) worst = d;
+        }
+        CHECK(worst <= 16 * 4 * rtol, "%s: light at 3.3, D %g: relative error %.3g", hrm_method_name(meth), D, worst);
+    }
     /* A tiny angular range (a short segment far from the light): the warp
        falls back to none. [1e3, 1e3 + 1e-3] seen from 1 away: 1e-9 rad. */
     {
