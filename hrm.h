@@ -347,19 +347,19 @@
    (decoupled tau), a pair's neighbours lie 20 times apart (both > 0, or > 1
    optical depth), others' 8 (nested Simpson's 6; no fit: half the gap). An
    interval whose error does not shrink may take rtol/16 of |L|, 16 times a
-   call. Worst HRM_OK run, smooth scenes: 2.3 rtol. Missed tolerances return
-   the best estimate and a warning: H_MIN (a step at h_min failed), MAX_EVALS
+   call. Worst HRM_OK run, smooth scenes: 2.3 rtol. Missed tolerances: the best
+   estimate and a warning: H_MIN (a step at h_min failed), MAX_EVALS
    (stats.evals <= max_evals, a user warp's calls 4 max_evals), STORAGE (a
    finish HRM_MAX_DEPTH deep), ROUNDOFF (bisection no longer helps, or t
-   cannot resolve a step or rtol of a light's distance), TOLERANCE (the
-   accepted estimates exceed atol + 3 rtol |L|, also after a pass at the
-   scale found), RTOL_CLIPPED (rtol < 100 eps, raised); a piece's (between breakpoints) H_MIN or TOLERANCE only where
-   all exceed atol + rtol |L|. result.error: their sum per channel, any status
-   (-1: fixed steps). Every L (but the RTE form's fixed steps, Le per length)
-   is in [0, the largest S/sigma_t sampled times 1 - Tr], cuts in result.error
-   (fixed steps to 2x, Monte Carlo any; past: bound, TOLERANCE). Not seen: a
-   feature between a step's samples (a light needs its warp, an occluder its
-   breakpoints). Munoz's, Gonterman's controllers (eq. 12, 3.4) unverified.
+   resolves no step, or a light's distance to rtol), TOLERANCE (accepted
+   estimates over atol + 3 rtol |L|, also at the scale found), RTOL_CLIPPED
+   (rtol < 100 eps, raised); a piece's (between breakpoints) H_MIN or TOLERANCE
+   only where all exceed atol + rtol |L|. result.error: their sum per channel,
+   any status (-1: fixed steps). Every L (but the RTE form's fixed steps, Le
+   per length) is in [0, the largest S/sigma_t sampled times 1 - Tr], cuts in
+   result.error (fixed steps to 2x, Monte Carlo any; past: bound, TOLERANCE).
+   Not seen: a feature between a step's samples (a light needs its warp, an
+   occluder its breakpoints). Munoz's, Gonterman's controls unverified.
 
    ==========================================================================
    IMPORTANCE SAMPLING (options.warp; Munoz 2014 s.5)
