@@ -1231,6 +1231,40 @@ static void wp_equiangular_edges(void)
         }
         CHECK(worst <= 16 * 4 * rtol, "%s: light at 3.3, D %g: relative error %.3g", hrm_method_name(meth), D, worst);
     }
+    /* The same through hrm_light_options, the light (t's resolution there
+       8 rtol of its distance) and a second one 0.5 from the ray at 5 in
+       its mixture warp: the mixture's resolution, weighed by the lights'
+       shares of u, past 2 rtol warns too */
+    for (mi = 0; mi < N_METHODS_ALL; ++mi) {
+        hrm_method meth = every_method[mi];
+        double rtol = real_is_float() ? 1e-4 : 1e-5, D = 3.3 * real_eps() / (8 * rtol);
+        static const hrm_real origin[3] = {0, 0, 0}, dir[3] = {1, 0, 0};
+        hrm_light lights[2];
+        hrm_ray_plan plan;
+        hrm_options o;
+        hrm_medium m;
+        hrm_result r;
+        hrm_status st;
+        if (!is_adaptive(meth)) continue;
+        memset(lights, 0, sizeof lights);
+        lights[0].kind = lights[1].kind = HRM_LIGHT_POINT;
+        lights[0].position[0] = (hrm_real)3.3;
+        lights[0].position[1] = (hrm_real)D;
+        lights[1].position[0] = 5;
+        lights[1].position[1] = (hrm_real)0.5;
+        lights[0].power = lights[1].power = 1;
+        sc.delta = 3.3;
+        sc.D = D;
+        o = wp_options(meth, 8, NULL);
+        o.rtol = (hrm_real)rtol;
+        CHECK_INT(hrm_light_options(lights, 2, NULL, 0, origin, dir, (hrm_real)0.5, (hrm_real)6.5, &plan, &o), HRM_OK,
+                  "%s: two lights: hrm_light_options", hrm_method_name(meth));
+        CHECK_INT(o.warp.kind, HRM_WARP_USER, "%s: two lights: the mixture warp", hrm_method_name(meth));
+        m = problem_medium(&p);
+        st = hrm_solve(&m, (hrm_real)0.5, (hrm_real)6.5, &o, &r);
+        CHECK(st > 0, "%s: mixture, a light at 3.3, D %g (8 rtol): a warning (status %d)", hrm_method_name(meth), D,
+              (int)st);
+    }
     /* A tiny angular range (a short segment far from the light): the warp
        falls back to none. [1e3, 1e3 + 1e-3] seen from 1 away: 1e-9 rad. */
     {
