@@ -2996,6 +2996,15 @@ static HRM_DEVICE hrm_status hrm__warp_valid(const hrm_warp *w)
 
 static HRM_DEVICE hrm_real hrm__mix_t_of_u(void *user, hrm_real u);
 
+/* t's resolution where the ray [t0, t1] passes nearest a light whose foot
+   is delta, D from the ray's line, over the light's distance there: eps
+   |t| / r (hrm__finish warns past 2 rtol). */
+static HRM_DEVICE double hrm__light_res(double delta, double D, double t0, double t1)
+{
+    double near = delta < t0 ? t0 : delta > t1 ? t1 : delta, x = delta - near;
+    return (double)HRM__EPS * fabs(near) / sqrt(D * D + x * x);
+}
+
 static HRM_DEVICE HRM__CALL hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_warp *w)
 {
     int inf = !HRM__FINITE(c->T);
@@ -3092,13 +3101,8 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_wa
                 c->pb = T;
             }
         }
-        if (c->warp == HRM_WARP_EQUIANGULAR) {
-            /* t's resolution where the ray passes nearest the light, over
-               the light's distance there (hrm__finish) */
-            hrm_real x = da > 0 ? da : !inf && db < 0 ? -db : 0;
-            hrm_real near = w->delta < c->t0 ? c->t0 : !inf && w->delta > c->t1 ? c->t1 : w->delta;
-            c->w_res = HRM__EPS * HRM_FABS(near) / HRM_HYPOT(D, x);
-        }
+        if (c->warp == HRM_WARP_EQUIANGULAR)
+            c->w_res = (hrm_real)hrm__light_res((double)w->delta, (double)D, (double)c->t0, (double)c->t1);
         break;
     }
     case HRM_WARP_USER:
@@ -3667,16 +3671,12 @@ HRM__DEF HRM_DEVICE hrm_status hrm_light_options(const hrm_light *lights, int nl
         options->warp.delta = (hrm_real)plan->delta[0];
         options->warp.D = (hrm_real)plan->D[0];
     } else if (plan->nmix > 1) {
-        for (j = 0; j < plan->nmix; ++j) {
-            double x = plan->delta[j] < (double)t0 ? (double)t0 - plan->delta[j]
-                     : plan->delta[j] > (double)t1 ? plan->delta[j] - (double)t1 : 0;
-            double near = plan->delta[j] - (plan->delta[j] < (double)t0 ? -x : x);
-            double r = (double)HRM__EPS * fabs(near) / sqrt(plan->D[j] * plan->D[j] + x * x);
-            /* weighed by the light's share of u, which is about its share
-               of L (the largest alone warned on 15% of a check's float
-               answers, 10% of them within rtol) */
-            plan->res += r * hrm__mix_mass(plan->c[j], plan->delta[j], plan->D[j], t0, t1) / plan->u1;
-        }
+        /* each light's resolution weighed by its share of u, which is
+           about its share of L (the largest alone warned on 15% of a
+           check's float answers, 10% of them within rtol) */
+        for (j = 0; j < plan->nmix; ++j)
+            plan->res += hrm__light_res(plan->delta[j], plan->D[j], (double)t0, (double)t1) *
+                         hrm__mix_mass(plan->c[j], plan->delta[j], plan->D[j], t0, t1) / plan->u1;
         options->warp.kind = HRM_WARP_USER;
         options->warp.user = plan;
         options->warp.t_of_u = hrm__mix_t_of_u;
@@ -3800,6 +3800,18 @@ static HRM_DEVICE int hrm__memo_hit(hrm__ctx *c, hrm_real p, hrm_real s, hrm_rea
     return 1;
 }
 
+/* All three coefficients at s: the constants, or the sigma callbacks;
+   returns the medium evaluations made. */
+static HRM_DEVICE int hrm__coeffs_all(hrm__ctx *c, hrm_real s, hrm_real sa[HRM__CH], hrm_real ss[HRM__CH],
+                                      hrm_real st[HRM__CH])
+{
+    if (!c->homog) return hrm__coeffs(c, s, 1, 1, 1, sa, ss, st);
+    memcpy(sa, c->sa, sizeof(hrm_real) * HRM__CH);
+    memcpy(ss, c->ss, sizeof(hrm_real) * HRM__CH);
+    memcpy(st, c->st, sizeof(hrm_real) * HRM__CH);
+    return 0;
+}
+
 /* hrm__eval, step 2: the medium at s (sa, ss, st: the coefficients the
    source and tau need) and Tr at the node, from wherever tau comes. */
 static HRM_DEVICE void hrm__medium_at(hrm__ctx *c, hrm_real s, hrm_real s_raw, hrm__pt *pt, hrm_real sa[HRM__CH],
@@ -3807,9 +3819,7 @@ static HRM_DEVICE void hrm__medium_at(hrm__ctx *c, hrm_real s, hrm_real s_raw, h
 {
     int i, medium, st_known;
     if (c->homog) {
-        memcpy(sa, c->sa, sizeof(hrm_real) * HRM__CH);
-        memcpy(ss, c->ss, sizeof(hrm_real) * HRM__CH);
-        memcpy(st, c->st, sizeof(hrm_real) * HRM__CH);
+        hrm__coeffs_all(c, s, sa, ss, st);
         if (c->tr_at_nodes) hrm__node_tr(c, pt, pt->off + (s - s_raw));
         return;
     }
@@ -3868,7 +3878,7 @@ static HRM_DEVICE HRM__CALL void hrm__source(hrm__ctx *c, hrm_real s, const hrm_
                         const hrm_real st[HRM__CH], hrm_real q[HRM__CH])
 {
     const hrm_medium *m = c->m;
-    hrm_real v[HRM__CH], vmax[HRM__CH];
+    hrm_real v[HRM__CH], vmax[HRM__CH], e[HRM__CH];
     int i, em = 0, sc = 0, called, sig_known = c->homog || c->need_st || !m->sigma_t;
     for (i = 0; i < HRM__CH; ++i) {
         em |= c->per_length || sa[i] > 0;
@@ -3883,11 +3893,9 @@ static HRM_DEVICE HRM__CALL void hrm__source(hrm__ctx *c, hrm_real s, const hrm_
         m->Le(m->user, s, v);
         hrm__check(c, v, 3);
         for (i = 0; i < HRM__CH; ++i) {
-            hrm_real e = c->per_length ? v[i] : sa[i] * v[i];
-            hrm_real sig = c->homog ? c->st[i] : c->need_st ? st[i] : sa[i] + ss[i];
-            q[i] += e;
+            e[i] = c->per_length ? v[i] : sa[i] * v[i];
+            q[i] += e[i];
             vmax[i] = v[i];
-            if (sig_known && sig > 0 && e / sig > c->em_max[i]) c->em_max[i] = e / sig;
         }
     }
     if (sc && c->status == HRM_OK) {
@@ -3907,6 +3915,8 @@ static HRM_DEVICE HRM__CALL void hrm__source(hrm__ctx *c, hrm_real s, const hrm_
         }
         b = sig_known && sig > 0 ? q[i] / sig : vmax[i];
         if (b > c->src_max[i]) c->src_max[i] = b;
+        /* the emission's part (hrm__emission_miss) */
+        if (em && sig_known && sig > 0 && e[i] > c->em_max[i] * sig) c->em_max[i] = e[i] / sig;
     }
     c->stats.evals += called;
 }
@@ -4656,6 +4666,40 @@ static HRM_DEVICE hrm_real hrm__tr_near(hrm_real tr, hrm_real delta)
     return tr * p;
 }
 
+/* Emission, which no light's warp flattens: the rule applied to sigma_t
+   Tr (dt/du in the weights) against its exact integral over [a, b], Tr(a)
+   - Tr(b), times the largest emission per extinction sampled, into em
+   where larger (hrm__medium_miss compares the rule with itself on the
+   homogeneous medium instead, so that dt/du alone never refines a
+   constant medium for the light's sake; Le between a light's foot and t1,
+   where dt/du grew 6 000-fold within one interval, was missed whole:
+   every adaptive method 8-9% off with HRM_OK at rtol 1e-2, on constants
+   and sigma callbacks alike). sigma_t dt/du at the nodes: the layer's
+   (the medium check) or the constant's; not with a fit (hrm__rk_exp_miss
+   holds steps many optical depths thick). */
+static HRM_DEVICE HRM__CALL void hrm__emission_miss(const hrm__ctx *c, const hrm__pt *const *pt, const hrm_real *w,
+                                                    int n, hrm_real h, const hrm_real *tau_a, const hrm_real *tau_b,
+                                                    hrm_real em[HRM__CH])
+{
+    int i, j;
+    if (c->expo) return;
+    for (i = 0; i < HRM__CH; ++i) {
+        hrm_real d = tau_b[i] - tau_a[i], tra, A, MT = 0, Mabs = 0, me;
+        if (!(c->em_max[i] > 0 && d > 0)) continue;
+        tra = pt[0]->tau[i] == tau_a[i] ? pt[0]->tr[i] : HRM_EXP(-tau_a[i]);
+        A = tra * -HRM_EXPM1(-d);
+        for (j = 0; j < n; ++j) {
+            hrm_real g = c->mcheck ? pt[j]->sg[i] : c->st[i] * pt[j]->J;
+            MT += w[j] * g * pt[j]->tr[i];
+            Mabs += HRM_FABS(w[j]) * g;
+        }
+        /* (what rounding leaves of the comparison: hrm__medium_miss) */
+        me = HRM_FABS(h * MT - A) - tra * (32 * HRM__EPS * (tau_b[i] + 8 + Mabs * HRM_FABS(h)));
+        me = me > 0 ? c->em_max[i] * me : 0;
+        if (me > em[i]) em[i] = me;
+    }
+}
+
 /* Whether a rule's nodes resolve the medium. The layer knows tau along
    the ray to tau_tol; the nodes know only their own samples, and a medium
    that varies between them (sigma = max(0, sin 3t) under two panels of
@@ -4747,18 +4791,8 @@ static HRM_DEVICE HRM__CALL void hrm__medium_miss(const hrm__ctx *c, const hrm__
             if (R == 0) R = 1;
         }
         em[i] = R * A * rel;
-        if (!c->expo && c->em_max[i] > 0) {
-            /* emission, which no light's warp flattens: what the rule
-               misses of the exact 1 - Tr it weighs (the homogeneous
-               comparison above cancels dt/du for the light's sake; Le
-               between a light's foot and t1, where dt/du grew 6 000-fold
-               within one interval, was missed whole: nested Simpson 7.6
-               rtol off with HRM_OK) */
-            hrm_real me = HRM_FABS(MT - A) - tra * dd;
-            me = me > 0 ? c->em_max[i] * me : 0;
-            if (me > em[i]) em[i] = me;
-        }
     }
+    hrm__emission_miss(c, pt, w, n, h, tau_a, tau_b, em);
 }
 
 /* A step many optical depths thick: Tr falls by exp(-d) over it, which
@@ -4953,6 +4987,8 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE int hrm__rk_quad(hrm__ctx *c, const hr
     HRM_ASSERT(!(err && c->mcheck) || endj >= 0); /* every pair has a node at c = 1 */
     if (err && c->mcheck && endj >= 0)
         hrm__medium_miss(c, qs, ni->bw, ni->m, h, start->tau, pn[endj].tau, start->off, pn[endj].off, em);
+    else if (err && c->homog && endj >= 0) /* constants: their emission alone */
+        hrm__emission_miss(c, qs, ni->bw, ni->m, h, start->tau, pn[endj].tau, em);
     if (err && !c->expo && endj >= 0 && ni->c[0] == 0) hrm__rk_exp_miss(ni, qs, endj, h, (const hrm_real(*)[HRM__CH])f, em);
     edges = hrm__step_edges(c, p, p_end);
     if (err && !c->expo)
@@ -5763,9 +5799,10 @@ static HRM_DEVICE HRM__CALL void hrm__ns_five(const hrm__ctx *c, const hrm__pt *
         if (resolved) resolved[i] = (char)hrm__resolved5((const hrm_real(*)[HRM__CH])f, i, d2, t0, t1);
     }
     hrm__fill(M, HRM__CH, 0);
-    if (c->mcheck) {
+    if (c->mcheck || c->homog) {
         /* V is Boole's rule on the five samples (Abramowitz and Stegun
-           25.4.14): the medium is checked with it */
+           25.4.14): the medium is checked with it (constants: their
+           emission alone) */
         static const hrm_real boole[5] = {HRM__R(7.0) / 90, HRM__R(32.0) / 90,
                                           HRM__R(12.0) / 90, HRM__R(32.0) / 90,
                                           HRM__R(7.0) / 90};
@@ -5775,7 +5812,8 @@ static HRM_DEVICE HRM__CALL void hrm__ns_five(const hrm__ctx *c, const hrm__pt *
         nodes[2] = m;
         nodes[3] = qr;
         nodes[4] = b;
-        hrm__medium_miss(c, nodes, boole, 5, b->p - a->p, a->tau, b->tau, a->off, b->off, M);
+        if (c->mcheck) hrm__medium_miss(c, nodes, boole, 5, b->p - a->p, a->tau, b->tau, a->off, b->off, M);
+        else hrm__emission_miss(c, nodes, boole, 5, b->p - a->p, a->tau, b->tau, M);
     }
     for (i = 0; i < HRM__CH; ++i) {
         static const hrm_real x5[5] = {-1, HRM__R(-0.5), 0, HRM__R(0.5), 1};
@@ -6076,14 +6114,16 @@ static HRM_DEVICE HRM__CALL void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, co
     hrm__map(c, a, &off_a, &J);
     hrm__map(c, b, &off_b, &J);
     wmiss = hrm__gk_warp_miss(c, R, pt, a, b, off_a, off_b, &je);
-    if (c->mcheck) {
-        /* the nodes against the layer's tau at the interval's ends */
+    if (c->mcheck || c->homog) {
+        /* the nodes against the layer's tau at the interval's ends
+           (constants: their emission alone) */
         const hrm__pt *nodes[15];
         hrm_real tea[HRM__CH], teb[HRM__CH];
         hrm__tau_of(c, off_a, tea);
         hrm__tau_of(c, off_b, teb);
         for (j = 0; j < N; ++j) nodes[j] = &pt[j];
-        hrm__medium_miss(c, nodes, R->wk, N, hl, tea, teb, off_a, off_b, io->M);
+        if (c->mcheck) hrm__medium_miss(c, nodes, R->wk, N, hl, tea, teb, off_a, off_b, io->M);
+        else hrm__emission_miss(c, nodes, R->wk, N, hl, tea, teb, io->M);
     }
     if (chk) {
         /* the Lagrange weights of the nodes at the check sample */
@@ -8372,13 +8412,7 @@ static HRM_DEVICE void hrm__cut_foot(hrm__ctx *c, hrm_real s)
 {
     hrm_real sa[HRM__CH], ss[HRM__CH], st[HRM__CH], q[HRM__CH], keep[HRM__CH];
     memcpy(keep, c->src_max, sizeof keep);
-    if (c->homog) { /* (the constants: hrm__medium_at) */
-        memcpy(sa, c->sa, sizeof sa);
-        memcpy(ss, c->ss, sizeof ss);
-        memcpy(st, c->st, sizeof st);
-    } else {
-        c->stats.medium_evals += hrm__coeffs(c, s, 1, 1, 1, sa, ss, st);
-    }
+    c->stats.medium_evals += hrm__coeffs_all(c, s, sa, ss, st);
     hrm__source(c, s, sa, ss, st, q);
     if (c->status != HRM_OK) {
         c->status = HRM_OK;
