@@ -3879,7 +3879,11 @@ static HRM_DEVICE HRM__CALL void hrm__source(hrm__ctx *c, hrm_real s, const hrm_
 {
     const hrm_medium *m = c->m;
     hrm_real v[HRM__CH], vmax[HRM__CH], e[HRM__CH];
-    int i, em = 0, sc = 0, called, sig_known = c->homog || c->need_st || !m->sigma_t;
+    /* sigma_t at the node: the constant, the nodes' own sample (coupled
+       tau, the stream, the RTE form, or the medium check, which fetches
+       it), or sigma_a + sigma_s where no sigma_t callback is given */
+    int i, em = 0, sc = 0, called, st_node = c->need_st || (c->mcheck && m->sigma_t),
+        sig_known = c->homog || st_node || !m->sigma_t;
     for (i = 0; i < HRM__CH; ++i) {
         em |= c->per_length || sa[i] > 0;
         sc |= ss[i] > 0;
@@ -3908,7 +3912,7 @@ static HRM_DEVICE HRM__CALL void hrm__source(hrm__ctx *c, hrm_real s, const hrm_
         }
     }
     for (i = 0; i < HRM__CH; ++i) {
-        hrm_real sig = c->homog ? c->st[i] : c->need_st ? st[i] : sa[i] + ss[i], b;
+        hrm_real sig = c->homog ? c->st[i] : st_node ? st[i] : sa[i] + ss[i], b;
         if (!(HRM_FABS(q[i]) <= c->range)) {
             if (c->status == HRM_OK) c->status = HRM_ERR_RANGE;
             q[i] = 0;

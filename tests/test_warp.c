@@ -1088,6 +1088,14 @@ static void wp_em_ss(void *u, hrm_real t, hrm_real out[NCH])
     for (c = 0; c < NCH; ++c) out[c] = (hrm_real)((const double *)u)[1];
 }
 
+static void wp_em_st(void *u, hrm_real t, hrm_real out[NCH])
+{
+    const double *e = (const double *)u;
+    int c;
+    (void)t;
+    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)(e[0] + e[1]);
+}
+
 static void wp_em_le(void *u, hrm_real t, hrm_real out[NCH])
 {
     int c;
@@ -1280,7 +1288,9 @@ static void wp_equiangular_edges(void)
        with HRM_OK at rtol 1e-2 on a sigma callback (an independent check's
        case). The medium check weighs the rule's miss of 1 - Tr by the
        emission per extinction. The medium as constants, as one sigma
-       callback and as sigma_a and sigma_s callbacks. Reference: the
+       callback, as sigma_a and sigma_s callbacks, and with sigma_t given
+       too (whose emission per extinction had not been tracked: the
+       check saw none). Reference: the
        emission in closed form, the light's part by 4 000 x 8-point
        Gauss-Legendre panels in u = atan((t - delta) / D), where it is
        smooth (to 1e-12). Every adaptive method within 3 rtol, or a
@@ -1305,8 +1315,9 @@ static void wp_equiangular_edges(void)
                 li += h / 2 * glw[g % 4] * exp(-st * (t - t0)) * em_par[1] * em_par[3] / em_par[4];
             }
         ref = em_par[0] * em_par[2] / st * -expm1(-st * (t1 - t0)) + li;
-        for (form = 0; form < 3; ++form) {
-            static const char *const form_name[3] = {"constants", "sigma callback", "sigma_a, sigma_s callbacks"};
+        for (form = 0; form < 4; ++form) {
+            static const char *const form_name[4] = {"constants", "sigma callback", "sigma_a, sigma_s callbacks",
+                                                     "sigma_t, sigma_a, sigma_s callbacks"};
             hrm_medium m;
             hrm_options o;
             hrm_result r;
@@ -1324,6 +1335,7 @@ static void wp_equiangular_edges(void)
             } else {
                 m.sigma_a = wp_em_sa;
                 m.sigma_s = wp_em_ss;
+                if (form == 3) m.sigma_t = wp_em_st;
             }
             m.Le = wp_em_le;
             m.Li = wp_em_li;
