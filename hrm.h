@@ -2805,16 +2805,16 @@ static HRM_DEVICE void hrm__map(hrm__ctx *c, hrm_real p, hrm_real *off, hrm_real
         /* cos p from the nearer end's exact cos and sin, moving away from
            +-pi/2, where cos p is small and a plain cos(p) imprecise. */
         hrm_real d = p - c->w_ua, e = c->w_ub - p, cp;
-        if (d <= e) {
-            cp = c->w_cos_a * HRM_COS(d) - c->w_sin_a * HRM_SIN(d);
-            o = c->w_ra * HRM_SIN(d) / cp; /* D / cos(pa) = distance to t0 */
-        } else {
-            /* the offset from t1's too (D / cos(pb) = distance to t1): sin d
-               near pi carries eps pi of d, eps pi r / D of T at the end (D =
-               1e-12 T: 1e-4 T) */
-            cp = c->w_cos_b * HRM_COS(e) + c->w_sin_b * HRM_SIN(e);
-            o = c->w_rb > 0 ? c->T - c->w_rb * HRM_SIN(e) / cp : c->w_ra * HRM_SIN(d) / cp;
-        }
+        cp = d <= e ? c->w_cos_a * HRM_COS(d) - c->w_sin_a * HRM_SIN(d)
+                    : c->w_cos_b * HRM_COS(e) + c->w_sin_b * HRM_SIN(e);
+        /* the offset from the end nearer in t (D / cos(pa) = distance to
+           t0, D / cos(pb) to t1): from t1, sin d near pi carries eps pi
+           of d, eps pi r / D of T at the end (D = 1e-12 T: 1e-4 T); from
+           t0, T - x near t0 keeps only eps T of the offset (a light's foot
+           at t0, D 1e-17 of the ray: d ~ D where the offset read 0, L 5
+           times the exact with HRM_OK) */
+        o = c->w_ra * HRM_SIN(d) / cp;
+        if (c->w_rb > 0 && !(o <= c->T / 2)) o = c->T - c->w_rb * HRM_SIN(e) / cp;
         j = c->w_D / (cp * cp);
         break;
     }
@@ -2998,11 +2998,15 @@ static HRM_DEVICE hrm_real hrm__mix_t_of_u(void *user, hrm_real u);
 
 /* t's resolution where the ray [t0, t1] passes nearest a light whose foot
    is delta, D from the ray's line, over the light's distance there: eps
-   |t| / r (hrm__finish warns past 2 rtol). */
+   |t| / r, t = t0 + the offset carrying eps of both (a foot at t1 = 0 on
+   [-1, 0], D 1e-15: eps 1 / D, not 0; nested Simpson 12 rtol off with
+   HRM_OK); hrm__finish warns past 2 rtol. */
 static HRM_DEVICE double hrm__light_res(double delta, double D, double t0, double t1)
 {
-    double near = delta < t0 ? t0 : delta > t1 ? t1 : delta, x = delta - near;
-    return (double)HRM__EPS * fabs(near) / sqrt(D * D + x * x);
+    double near = delta < t0 ? t0 : delta > t1 ? t1 : delta, x = delta - near, span = fabs(near);
+    span = fabs(t0) > span ? fabs(t0) : span;
+    span = near - t0 > span ? near - t0 : span;
+    return (double)HRM__EPS * span / sqrt(D * D + x * x);
 }
 
 static HRM_DEVICE HRM__CALL hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_warp *w)

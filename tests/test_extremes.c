@@ -1313,6 +1313,72 @@ static void rg_pair_thick_step(void)
                     }
 }
 
+/* A light's foot at an end of the ray, D tiny against it: sigma_s 0.01
+   (constants, and constant callbacks), Li = 1 / d^2, rays [0, 1] (foot
+   at t0) and [-1, 0] (foot at t1). The offsets near the foot came from the
+   far end's formula, T - x, which keeps only eps T of them: where the
+   offset read 0 instead of D cot(u), d was D and L 5 times the exact with
+   HRM_OK (D 1e-17, nested Simpson, Cash-Karp, Verner; 11-14 rtol at
+   1e-15; float at D 1e-9: 20 times); an independent check's cases. L =
+   0.01 atan(1/D) / D (times e^-0.01 for the foot at t1) to 1e-15
+   relative (what the attenuation adds near the foot is 0.01 D ln(1/D)
+   of it). Every adaptive method, rtol 1e-4: within 3 rtol with HRM_OK;
+   at t1 (t = -1 + offset resolves eps), a warning where eps / D passes
+   2 rtol. */
+static void rg_foot_li(void *u, hrm_real t, hrm_real out[NCH])
+{
+    double D = *(const double *)u, x = (double)t;
+    int c;
+    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)(1 / (D * D + x * x));
+}
+
+static void rg_foot_ss(void *u, hrm_real t, hrm_real out[NCH])
+{
+    int c;
+    (void)u;
+    (void)t;
+    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)0.01;
+}
+
+static void rg_foot_at_end(void)
+{
+    /* (at t1 = 0 on [-1, 0], D at most 4 eps is on the ray as far as t
+       = t0 + offset can tell: HRM_ERR_SINGULAR) */
+    static const double Ds[2][2][2] = {{{1e-15, 1e-17}, {1e-6, 1e-9}}, {{1e-14, 1e-15}, {1e-5, 1e-6}}};
+    int di, end, cb, mi, c;
+    for (di = 0; di < 2; ++di)
+        for (end = 0; end < 2; ++end)
+            for (cb = 0; cb < 2; ++cb)
+                for (mi = 0; mi < N_METHODS_ALL; ++mi) {
+                    double D = Ds[end][real_is_float()][di], want = 0.01 * atan(1 / D) / D * (end ? exp(-0.01) : 1);
+                    hrm_method meth = every_method[mi];
+                    hrm_medium m;
+                    hrm_options o;
+                    hrm_result r;
+                    hrm_status st;
+                    if (!is_adaptive(meth)) continue;
+                    memset(&m, 0, sizeof m);
+                    m.user = &D;
+                    if (cb) {
+                        m.sigma_s = rg_foot_ss;
+                    } else {
+                        m.flags = HRM_MEDIUM_HOMOGENEOUS;
+                        for (c = 0; c < NCH; ++c) m.const_sigma_s[c] = (hrm_real)0.01;
+                    }
+                    m.Li = rg_foot_li;
+                    o = hrm_default_options(meth);
+                    o.rtol = (hrm_real)1e-4;
+                    o.warp.kind = HRM_WARP_EQUIANGULAR;
+                    o.warp.delta = 0;
+                    o.warp.D = (hrm_real)D;
+                    st = hrm_solve(&m, end ? -1 : 0, end ? 0 : 1, &o, &r);
+                    CHECK(st >= 0, "%s, foot at t%d, D %g: status %d", hrm_method_name(meth), end, D, (int)st);
+                    CHECK(st != HRM_OK || fabs((double)r.L[0] - want) <= 3e-4 * want,
+                          "%s, %s, foot at t%d, D %g: L %.8g, exact %.8g with HRM_OK", hrm_method_name(meth),
+                          cb ? "callbacks" : "constants", end, D, (double)r.L[0], want);
+                }
+}
+
 void extremes_tests(void)
 {
     RUN_GROUP(xg_grid);
@@ -1328,4 +1394,5 @@ void extremes_tests(void)
     RUN_GROUP(rg_gk_equiangular);
     RUN_GROUP(rg_gk_packed);
     RUN_GROUP(rg_pair_thick_step);
+    RUN_GROUP(rg_foot_at_end);
 }
