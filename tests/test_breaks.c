@@ -870,17 +870,37 @@ static void br_bump_sigma(void *u, hrm_real t, hrm_real sa[NCH], hrm_real ss[NCH
     br_split_sigma(br_bump_t((const br_bump *)u, (double)t), 0.85, sa, ss);
 }
 
-/* the same as two callbacks */
-static void br_bump_sa(void *u, hrm_real t, hrm_real out[NCH])
+/* A medium's one sigma callback as sigma_a and sigma_s callbacks: user
+   data a br_via (the callback and its own user data). */
+typedef struct br_via {
+    hrm_sigma_fn sigma;
+    void *user;
+} br_via;
+
+static void br_via_sa(void *u, hrm_real t, hrm_real out[NCH])
 {
+    const br_via *v = (const br_via *)u;
     hrm_real ss[NCH];
-    br_bump_sigma(u, t, out, ss);
+    v->sigma(v->user, t, out, ss);
 }
 
-static void br_bump_ss(void *u, hrm_real t, hrm_real out[NCH])
+static void br_via_ss(void *u, hrm_real t, hrm_real out[NCH])
 {
+    const br_via *v = (const br_via *)u;
     hrm_real sa[NCH];
-    br_bump_sigma(u, t, sa, out);
+    v->sigma(v->user, t, sa, out);
+}
+
+/* m's medium as the one callback f, or (split) as sigma_a and sigma_s
+   callbacks through via */
+static void br_sigma_form(hrm_medium *m, br_via *via, hrm_sigma_fn f, void *user, int split)
+{
+    via->sigma = f;
+    via->user = user;
+    m->user = split ? (void *)via : user;
+    m->sigma = split ? NULL : f;
+    m->sigma_a = split ? br_via_sa : NULL;
+    m->sigma_s = split ? br_via_ss : NULL;
 }
 
 static void br_feature_slab(void)
@@ -892,6 +912,7 @@ static void br_feature_slab(void)
     gl_rule(8, x, g);
     for (k = 0; k < 60; ++k) {
         br_bump s;
+        br_via via;
         double ends[4] = {0, 0, 0, T}, tau = 0, want;
         hrm_medium m;
         s.x1 = 0.4 + 0.6 * k / 60.0;
@@ -906,7 +927,6 @@ static void br_feature_slab(void)
             }
         want = 0.85 * -expm1(-tau);
         memset(&m, 0, sizeof m);
-        m.user = &s;
         m.Li = br_one;
         m.feature = (hrm_real)s.w;
         for (mi = 0; mi < 3; ++mi)
@@ -915,9 +935,7 @@ static void br_feature_slab(void)
                 hrm_result r;
                 hrm_status st;
                 /* one callback, or two (alternately) */
-                m.sigma = (k + w) % 2 ? NULL : br_bump_sigma;
-                m.sigma_a = (k + w) % 2 ? br_bump_sa : NULL;
-                m.sigma_s = (k + w) % 2 ? br_bump_ss : NULL;
+                br_sigma_form(&m, &via, br_bump_sigma, &s, (k + w) % 2);
                 o.rtol = (hrm_real)1e-3;
                 if (w == 1) o.warp.kind = HRM_WARP_DISTANCE;
                 if (w == 2) {
@@ -963,18 +981,6 @@ static void br_notch_sigma(void *u, hrm_real t, hrm_real sa[NCH], hrm_real ss[NC
     br_split_sigma(br_notch_t((const br_notch *)u, (double)t), 0.71804884, sa, ss);
 }
 
-static void br_notch_sa(void *u, hrm_real t, hrm_real out[NCH])
-{
-    hrm_real ss[NCH];
-    br_notch_sigma(u, t, out, ss);
-}
-
-static void br_notch_ss(void *u, hrm_real t, hrm_real out[NCH])
-{
-    hrm_real sa[NCH];
-    br_notch_sigma(u, t, sa, out);
-}
-
 static void br_notch_li(void *u, hrm_real t, hrm_real out[NCH])
 {
     double x = (double)t - 1.6186861;
@@ -991,6 +997,7 @@ static void br_feature_notch(void)
     gl_rule(8, x, g);
     for (k = 0; k < 12; ++k) {
         br_notch s;
+        br_via via;
         double ends[4], want = 0, tau0 = 0;
         hrm_medium m;
         s.a = 1.25 + 0.05 * k + 0.0031 * (k % 3);
@@ -1011,7 +1018,6 @@ static void br_feature_notch(void)
             tau0 += sig * (ends[i + 1] - ends[i]);
         }
         memset(&m, 0, sizeof m);
-        m.user = &s;
         m.Li = br_notch_li;
         m.feature = (hrm_real)(s.b - s.a);
         for (mi = 0; mi < 3; ++mi)
@@ -1019,9 +1025,7 @@ static void br_feature_notch(void)
                 hrm_options o = hrm_default_options(ms[mi]);
                 hrm_result r;
                 hrm_status st;
-                m.sigma = form ? NULL : br_notch_sigma;
-                m.sigma_a = form ? br_notch_sa : NULL;
-                m.sigma_s = form ? br_notch_ss : NULL;
+                br_sigma_form(&m, &via, br_notch_sigma, &s, form);
                 o.rtol = (hrm_real)1e-4;
                 o.warp.kind = HRM_WARP_EQUIANGULAR;
                 o.warp.delta = (hrm_real)1.6186861;
