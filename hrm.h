@@ -3061,6 +3061,10 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_wa
         hrm_real res = 4 * HRM__EPS * (HRM_FABS(w->delta) > HRM_FABS(c->t0) ? HRM_FABS(w->delta)
                                                                              : HRM_FABS(c->t0));
         if (D <= res && w->delta >= c->t0 && w->delta <= c->t1) return HRM_ERR_SINGULAR;
+        /* what t resolves near the light, warped or not (a light on the
+           ray's line 8 ulps past t1, float: Gauss-Kronrod 6 700 rtol off
+           with HRM_OK) */
+        c->w_res = (hrm_real)hrm__light_res((double)w->delta, (double)D, (double)c->t0, (double)c->t1);
         if (D == 0) {
             c->warp = HRM_WARP_NONE; /* light on the ray's line, outside: 1/r^2 is smooth */
             break;
@@ -3105,8 +3109,6 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_wa
                 c->pb = T;
             }
         }
-        if (c->warp == HRM_WARP_EQUIANGULAR)
-            c->w_res = (hrm_real)hrm__light_res((double)w->delta, (double)D, (double)c->t0, (double)c->t1);
         break;
     }
     case HRM_WARP_USER:

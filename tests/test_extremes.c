@@ -1379,6 +1379,51 @@ static void rg_foot_at_end(void)
                 }
 }
 
+/* A light on the ray's line 8 ulps past t1 = 1 (D = 0: no warp, 1/r^2
+   smooth on the ray but r resolved by t to an eighth), sigma_s = sigma_t
+   = 1, Li = e^-r / r^2: Gauss-Kronrod 6 700 rtol off with HRM_OK in float
+   (an independent check's case). t's resolution there counts without the
+   warp: ROUNDOFF, or within 3 rtol. L = e^-delta (1/e - 1/delta), e =
+   delta - 1, exactly. */
+static void rg_line_li(void *u, hrm_real t, hrm_real out[NCH])
+{
+    double r = fabs((double)t - *(const double *)u);
+    int c;
+    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)(exp(-r) / (r * r));
+}
+
+static void rg_line_past_end(void)
+{
+    int mi, c, ri;
+    for (ri = 0; ri < 3; ++ri)
+        for (mi = 0; mi < N_METHODS_ALL; ++mi) {
+            hrm_method meth = every_method[mi];
+            double eps = real_is_float() ? (double)FLT_EPSILON : DBL_EPSILON, rtol = pow(10, -2 - ri), want, dl;
+            hrm_medium m;
+            hrm_options o;
+            hrm_result r;
+            hrm_status st;
+            if (!is_adaptive(meth)) continue;
+            dl = (double)(hrm_real)(1 + 8 * eps);
+            want = exp(-dl) * (1 / (dl - 1) - 1 / dl);
+            memset(&m, 0, sizeof m);
+            m.user = &dl;
+            m.flags = HRM_MEDIUM_HOMOGENEOUS;
+            for (c = 0; c < NCH; ++c) m.const_sigma_s[c] = 1;
+            m.Li = rg_line_li;
+            o = hrm_default_options(meth);
+            o.rtol = (hrm_real)rtol;
+            o.warp.kind = HRM_WARP_EQUIANGULAR;
+            o.warp.delta = (hrm_real)dl;
+            o.warp.D = 0;
+            st = hrm_solve(&m, 0, 1, &o, &r);
+            CHECK(st >= 0, "%s, light 8 ulps past t1: status %d", hrm_method_name(meth), (int)st);
+            CHECK(st != HRM_OK || fabs((double)r.L[0] - want) <= 3 * rtol * want,
+                  "%s, rtol %g, light 8 ulps past t1: L %.8g, exact %.8g with HRM_OK", hrm_method_name(meth), rtol,
+                  (double)r.L[0], want);
+        }
+}
+
 void extremes_tests(void)
 {
     RUN_GROUP(xg_grid);
@@ -1395,4 +1440,5 @@ void extremes_tests(void)
     RUN_GROUP(rg_gk_packed);
     RUN_GROUP(rg_pair_thick_step);
     RUN_GROUP(rg_foot_at_end);
+    RUN_GROUP(rg_line_past_end);
 }
