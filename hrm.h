@@ -436,12 +436,12 @@
    HRM_TAU_DECOUPLED  (default: adaptive methods; fixed-step ones with a fit,
        or Simpson, RK4 and Adams-Bashforth under a warp) sigma_t on its own
        abscissae (Kulla, Fajardo 2012; Munoz 2014 s.6): panels in t, Chebyshev
-       interpolation of degree 8 then 16, each accepted when its error of tau
-       times Tr at its start is at most tau_tol max(its increment of tau,
-       1/64); L's error from tau stays below tau_tol (1 + K/64) sup(S/sigma_t)
-       (1 - Tr), K the panels thinner than 1/64: about L unless the source
-       peaks where Tr is far lower. tau_tol 0: rtol/8 (adaptive), 0.01 N^-order
-       (fixed-step). What the scan or a missed node saw is kept.
+       interpolants of degree 8, 16, each accepted when its error of tau times
+       Tr at its start is at most tau_tol max(its increment of tau, 1/64); L's
+       error from tau stays below tau_tol (1 + K/64) sup(S/sigma_t) (1 - Tr), K
+       the panels thinner than 1/64: about L unless the source peaks where Tr
+       is far lower (not the equiangular light). tau_tol 0: rtol/8 (adaptive),
+       0.01 N^-order (fixed-step). What the scan or a missed node saw is kept.
    HRM_TAU_STREAM  (default: the rectangle rule, Monte Carlo and Euler under
        a warp) sigma_t at the nodes and at most 16 more points in t where the
        warp leaves them sparsest (2N + 8; Simpson, RK4 2N + 17), local cubics.
@@ -1887,7 +1887,9 @@ static HRM_DEVICE hrm_real hrm__uniform(uint64_t *state)
    (1 + K/64), K panels thinner than 1/64), L's own scale unless the
    source peaks where Tr is far below it (a light at optical depth 20 or
    more in a varying medium: 8% off at rtol 1e-2 with HRM_OK, an
-   independent check's case), and no effort goes where Tr is already 0. Without
+   independent check's case; under the equiangular warp the weight is at
+   least an eighth of Tr relative to the light's foot, hrm__tau_fit), and
+   no effort goes where Tr is already 0. Without
    the floor a kink of sigma (error ~ h^2 against an increment ~ h) forced
    panels down to tau_tol of the ray, and past HRM_TAU_PANELS of them the
    layer marched again from t0 at every query behind its window. Panels that fail are shrunk;
@@ -1976,6 +1978,10 @@ typedef struct hrm__tau {
     hrm_real mem_x[HRM__TMEM], mem_s[HRM__TMEM][HRM__CH];
     char mem_keep[HRM__TMEM];
     long hit;               /* the panel of the last hrm__tau_at */
+    hrm_real foot;          /* the equiangular light's foot (offset; -1:
+                               none): a panel weighs its error by Tr
+                               relative to the foot's too (at most 1) */
+    hrm_real tau_foot[HRM__CH]; /* tau at the start of the panel holding it */
     /* The medium scan's panels (hrm__scan_layout: scan_q of them, ends
        scan_b) and its samples at their degree-8 points (hrm__scan_at),
        where it took them (scan_have; at a breakpoint the left side, and
@@ -2352,7 +2358,18 @@ static HRM_DEVICE HRM__CALL hrm_real hrm__tau_fit(hrm__ctx *c, const hrm__tau *L
                 16 * HRM__EPS * (b - a) * big;
         err *= b - a;
         if (err > 0) {
-            w = HRM_EXP(-tau_a[i]); /* an error where Tr is 0 costs nothing */
+            /* an error where Tr is 0 costs nothing; but an equiangular
+               light's part of L lies at its foot, where Tr may be far
+               lower (optical depth 43 to it in a varying medium: L 8%
+               off with HRM_OK at rtol 1e-2): Tr relative to the foot's,
+               at most 1, counts too, over 8 (tau_tol = rtol / 8), so
+               that a light within depth ln 8 of the panel changes
+               nothing */
+            w = HRM_EXP(-tau_a[i]);
+            if (L->foot >= 0) {
+                hrm_real rel = a < L->foot ? 1 : HRM_EXP(-(tau_a[i] - L->tau_foot[i]));
+                if (rel / 8 > w) w = rel / 8;
+            }
             err *= w;
             if (err > 0) {
                 hrm_real r = allow > 0 ? err / allow : HRM__R(1e30);
@@ -2413,6 +2430,7 @@ static HRM_DEVICE void hrm__tau_init(hrm__tau *L, hrm_real end, hrm_real tol)
     L->tol = tol;
     L->nmem = 0;
     L->scan_q = 0;
+    L->foot = -1;
     hrm__tau_rebuild(L);
 }
 
@@ -2654,6 +2672,7 @@ static HRM_DEVICE HRM__CALL void hrm__tau_march(hrm__ctx *c, hrm__tau *L, hrm__t
             for (i = 0; i < HRM__CH; ++i) {
                 p->tau_a[i] = tau_a[i];
                 p->tau_b[i] = tau_a[i] + dtau[i];
+                if (a <= L->foot && L->foot <= b) L->tau_foot[i] = tau_a[i];
                 L->sig_b[i] = f[i][HRM__CHEB];
                 p->smax[i] = 0;
                 for (j = 0; j <= HRM__CHEB; j += HRM__CHEB / n)
@@ -7298,6 +7317,8 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, 
     }
     if (layer && c->keep_layer) hrm__tau_cut(layer, c->off_end);
     else if (layer) hrm__tau_init(layer, c->off_end, o->tau_tol);
+    if (layer && c->warp == HRM_WARP_EQUIANGULAR && c->w_delta - c->t0 > 0 && c->w_delta - c->t0 < c->off_end)
+        layer->foot = c->w_delta - c->t0;
     /* the breakpoints strictly inside what is integrated, as offsets */
     for (i = 0; i < o->nbreaks; ++i) {
         hrm_real off = o->breaks[i] - t0;
