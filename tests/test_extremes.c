@@ -1327,6 +1327,25 @@ static void rg_pair_thick_step(void)
    of it). Every adaptive method, rtol 1e-4: within 3 rtol with HRM_OK;
    at t1 (t = -1 + offset resolves eps), a warning where eps / D passes
    2 rtol. */
+/* Solve m over [t0, t1] with the equiangular warp of a light at delta, D
+   from the ray, at rtol: a status >= 0, and L within 3 rtol of want where
+   HRM_OK. */
+static void rg_check_equiangular(const hrm_medium *m, hrm_method meth, double rtol, double delta, double D,
+                                 double t0, double t1, double want, const char *what)
+{
+    hrm_options o = hrm_default_options(meth);
+    hrm_result r;
+    hrm_status st;
+    o.rtol = (hrm_real)rtol;
+    o.warp.kind = HRM_WARP_EQUIANGULAR;
+    o.warp.delta = (hrm_real)delta;
+    o.warp.D = (hrm_real)D;
+    st = hrm_solve(m, (hrm_real)t0, (hrm_real)t1, &o, &r);
+    CHECK(st >= 0, "%s, rtol %g, %s: status %d", hrm_method_name(meth), rtol, what, (int)st);
+    CHECK(st != HRM_OK || fabs((double)r.L[0] - want) <= 3 * rtol * want,
+          "%s, rtol %g, %s: L %.8g, exact %.8g with HRM_OK", hrm_method_name(meth), rtol, what, (double)r.L[0], want);
+}
+
 static void rg_foot_li(void *u, hrm_real t, hrm_real out[NCH])
 {
     double D = *(const double *)u, x = (double)t;
@@ -1353,12 +1372,9 @@ static void rg_foot_at_end(void)
             for (cb = 0; cb < 2; ++cb)
                 for (mi = 0; mi < N_METHODS_ALL; ++mi) {
                     double D = Ds[end][real_is_float()][di], want = 0.01 * atan(1 / D) / D * (end ? exp(-0.01) : 1);
-                    hrm_method meth = every_method[mi];
+                    char what[64];
                     hrm_medium m;
-                    hrm_options o;
-                    hrm_result r;
-                    hrm_status st;
-                    if (!is_adaptive(meth)) continue;
+                    if (!is_adaptive(every_method[mi])) continue;
                     memset(&m, 0, sizeof m);
                     m.user = &D;
                     if (cb) {
@@ -1368,16 +1384,8 @@ static void rg_foot_at_end(void)
                         for (c = 0; c < NCH; ++c) m.const_sigma_s[c] = (hrm_real)0.01;
                     }
                     m.Li = rg_foot_li;
-                    o = hrm_default_options(meth);
-                    o.rtol = (hrm_real)1e-4;
-                    o.warp.kind = HRM_WARP_EQUIANGULAR;
-                    o.warp.delta = 0;
-                    o.warp.D = (hrm_real)D;
-                    st = hrm_solve(&m, end ? -1 : 0, end ? 0 : 1, &o, &r);
-                    CHECK(st >= 0, "%s, foot at t%d, D %g: status %d", hrm_method_name(meth), end, D, (int)st);
-                    CHECK(st != HRM_OK || fabs((double)r.L[0] - want) <= 3e-4 * want,
-                          "%s, %s, foot at t%d, D %g: L %.8g, exact %.8g with HRM_OK", hrm_method_name(meth),
-                          cb ? "callbacks" : "constants", end, D, (double)r.L[0], want);
+                    snprintf(what, sizeof what, "%s, foot at t%d, D %g", cb ? "callbacks" : "constants", end, D);
+                    rg_check_equiangular(&m, every_method[mi], 1e-4, 0, D, end ? -1 : 0, end ? 0 : 1, want, what);
                 }
 }
 
@@ -1399,30 +1407,17 @@ static void rg_line_past_end(void)
     int mi, c, ri;
     for (ri = 0; ri < 3; ++ri)
         for (mi = 0; mi < N_METHODS_ALL; ++mi) {
-            hrm_method meth = every_method[mi];
-            double eps = real_is_float() ? (double)FLT_EPSILON : DBL_EPSILON, rtol = pow(10, -2 - ri), want, dl;
+            double eps = real_is_float() ? (double)FLT_EPSILON : DBL_EPSILON, dl;
             hrm_medium m;
-            hrm_options o;
-            hrm_result r;
-            hrm_status st;
-            if (!is_adaptive(meth)) continue;
+            if (!is_adaptive(every_method[mi])) continue;
             dl = (double)(hrm_real)(1 + 8 * eps);
-            want = exp(-dl) * (1 / (dl - 1) - 1 / dl);
             memset(&m, 0, sizeof m);
             m.user = &dl;
             m.flags = HRM_MEDIUM_HOMOGENEOUS;
             for (c = 0; c < NCH; ++c) m.const_sigma_s[c] = 1;
             m.Li = rg_line_li;
-            o = hrm_default_options(meth);
-            o.rtol = (hrm_real)rtol;
-            o.warp.kind = HRM_WARP_EQUIANGULAR;
-            o.warp.delta = (hrm_real)dl;
-            o.warp.D = 0;
-            st = hrm_solve(&m, 0, 1, &o, &r);
-            CHECK(st >= 0, "%s, light 8 ulps past t1: status %d", hrm_method_name(meth), (int)st);
-            CHECK(st != HRM_OK || fabs((double)r.L[0] - want) <= 3 * rtol * want,
-                  "%s, rtol %g, light 8 ulps past t1: L %.8g, exact %.8g with HRM_OK", hrm_method_name(meth), rtol,
-                  (double)r.L[0], want);
+            rg_check_equiangular(&m, every_method[mi], pow(10, -2 - ri), dl, 0, 0, 1, exp(-dl) * (1 / (dl - 1) - 1 / dl),
+                                 "light 8 ulps past t1");
         }
 }
 
@@ -1470,27 +1465,13 @@ static void rg_deep_light(void)
         }
     for (ri = 0; ri < 2; ++ri)
         for (mi = 0; mi < N_METHODS_ALL; ++mi) {
-            hrm_method meth = every_method[mi];
-            double rtol = ri ? 1e-3 : 1e-2;
             hrm_medium m;
-            hrm_options o;
-            hrm_result r;
-            hrm_status st;
-            if (!is_adaptive(meth)) continue;
+            if (!is_adaptive(every_method[mi])) continue;
             memset(&m, 0, sizeof m);
             m.sigma_a = rg_deep_sa;
             m.sigma_s = rg_deep_sa;
             m.Li = rg_deep_li;
-            o = hrm_default_options(meth);
-            o.rtol = (hrm_real)rtol;
-            o.warp.kind = HRM_WARP_EQUIANGULAR;
-            o.warp.delta = (hrm_real)0.5;
-            o.warp.D = (hrm_real)1e-3;
-            st = hrm_solve(&m, 0, 1, &o, &r);
-            CHECK(st >= 0, "%s, light at depth 43: status %d", hrm_method_name(meth), (int)st);
-            CHECK(st != HRM_OK || fabs((double)r.L[0] - want) <= 3 * rtol * want,
-                  "%s, rtol %g, light at depth 43: L %.8g, reference %.8g with HRM_OK", hrm_method_name(meth), rtol,
-                  (double)r.L[0], want);
+            rg_check_equiangular(&m, every_method[mi], ri ? 1e-3 : 1e-2, 0.5, 1e-3, 0, 1, want, "light at depth 43");
         }
 }
 
