@@ -1620,6 +1620,7 @@ typedef struct hrm__ctx {
     hrm_real w_res;           /* equiangular: t's resolution near the light over its distance */
     hrm_real w_cos_a, w_sin_a, w_cos_b, w_sin_b, w_ub; /* cos, sin of u(t0),
                               u(t1); u(t1) itself (pi/2 for t1 = inf) */
+    hrm_real w_umid;       /* equiangular: u at t0 + T/2 (offsets below it from t0) */
     const hrm_warp *uw;    /* user */
     hrm_real s_end;        /* the last abscissa: t1, or s(pb) when t1 = inf */
     hrm_real scale[2 * HRM__CH]; /* adaptive: coarse |total| of (tau, L) / 2 */
@@ -2826,17 +2827,23 @@ static HRM_DEVICE void hrm__map(hrm__ctx *c, hrm_real p, hrm_real *off, hrm_real
     case HRM_WARP_EQUIANGULAR: {
         /* cos p from the nearer end's exact cos and sin, moving away from
            +-pi/2, where cos p is small and a plain cos(p) imprecise. */
-        hrm_real d = p - c->w_ua, e = c->w_ub - p, cp;
-        cp = d <= e ? c->w_cos_a * HRM_COS(d) - c->w_sin_a * HRM_SIN(d)
-                    : c->w_cos_b * HRM_COS(e) + c->w_sin_b * HRM_SIN(e);
         /* the offset from the end nearer in t (D / cos(pa) = distance to
            t0, D / cos(pb) to t1): from t1, sin d near pi carries eps pi
            of d, eps pi r / D of T at the end (D = 1e-12 T: 1e-4 T); from
            t0, T - x near t0 keeps only eps T of the offset (a light's foot
            at t0, D 1e-17 of the ray: d ~ D where the offset read 0, L 5
-           times the exact with HRM_OK) */
-        o = c->w_ra * HRM_SIN(d) / cp;
-        if (c->w_rb > 0 && !(o <= c->T / 2)) o = c->T - c->w_rb * HRM_SIN(e) / cp;
+           times the exact with HRM_OK). Each sine once. */
+        hrm_real d = p - c->w_ua, e = c->w_ub - p, cp, sn;
+        int from_a = !(c->w_rb > 0) || p <= c->w_umid;
+        if (d <= e) {
+            sn = HRM_SIN(d);
+            cp = c->w_cos_a * HRM_COS(d) - c->w_sin_a * sn;
+            o = from_a ? c->w_ra * sn / cp : c->T - c->w_rb * HRM_SIN(e) / cp;
+        } else {
+            sn = HRM_SIN(e);
+            cp = c->w_cos_b * HRM_COS(e) + c->w_sin_b * sn;
+            o = from_a ? c->w_ra * HRM_SIN(d) / cp : c->T - c->w_rb * sn / cp;
+        }
         j = c->w_D / (cp * cp);
         break;
     }
@@ -3123,6 +3130,7 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_wa
             c->w_cos_b = D / rb;
             c->w_sin_b = db / rb;
             c->pb = c->w_ub = HRM_ATAN2(db, D);
+            c->w_umid = HRM_ATAN2(da + T / 2, D);
             /* A tiny angular range (a short segment far from the light)
                makes the warp nearly affine and p - pa imprecise: none. */
             if (!(c->pb - c->pa > HRM_SQRT(HRM__EPS) * (HRM_FABS(c->pa) + HRM_FABS(c->pb)))) {
@@ -4709,27 +4717,41 @@ static HRM_DEVICE hrm_real hrm__tr_near(hrm_real tr, hrm_real delta)
    and sigma callbacks alike). sigma_t dt/du at the nodes: the layer's
    (the medium check) or the constant's; not with a fit (hrm__rk_exp_miss
    holds steps many optical depths thick). */
+/* The emission's miss in channel i from the rule's h MT against A = Tr(a)
+   - Tr(b) = tra (1 - e^-d), dd what rounding leaves of the comparison
+   (hrm__medium_miss), into em where larger. */
+static HRM_DEVICE void hrm__emission_part(const hrm__ctx *c, int i, hrm_real MT, hrm_real A, hrm_real tra,
+                                          hrm_real dd, hrm_real em[HRM__CH])
+{
+    hrm_real me = HRM_FABS(MT - A) - tra * dd;
+    me = me > 0 ? c->em_max[i] * me : 0;
+    if (me > em[i]) em[i] = me;
+}
+
+/* The same, channel i, from the nodes. */
+static HRM_DEVICE void hrm__emission_one(const hrm__ctx *c, int i, const hrm__pt *const *pt, const hrm_real *w,
+                                         int n, hrm_real h, const hrm_real *tau_a, const hrm_real *tau_b,
+                                         hrm_real em[HRM__CH])
+{
+    hrm_real d = tau_b[i] - tau_a[i], tra, MT = 0, Mabs = 0;
+    int j;
+    if (c->expo || !(c->em_max[i] > 0 && d > 0)) return;
+    tra = pt[0]->tau[i] == tau_a[i] ? pt[0]->tr[i] : HRM_EXP(-tau_a[i]);
+    for (j = 0; j < n; ++j) {
+        hrm_real g = c->mcheck ? pt[j]->sg[i] : c->st[i] * pt[j]->J;
+        MT += w[j] * g * pt[j]->tr[i];
+        Mabs += HRM_FABS(w[j]) * g;
+    }
+    hrm__emission_part(c, i, h * MT, tra * -HRM_EXPM1(-d), tra, 32 * HRM__EPS * (tau_b[i] + 8 + Mabs * HRM_FABS(h)),
+                       em);
+}
+
 static HRM_DEVICE HRM__CALL void hrm__emission_miss(const hrm__ctx *c, const hrm__pt *const *pt, const hrm_real *w,
                                                     int n, hrm_real h, const hrm_real *tau_a, const hrm_real *tau_b,
                                                     hrm_real em[HRM__CH])
 {
-    int i, j;
-    if (c->expo) return;
-    for (i = 0; i < HRM__CH; ++i) {
-        hrm_real d = tau_b[i] - tau_a[i], tra, A, MT = 0, Mabs = 0, me;
-        if (!(c->em_max[i] > 0 && d > 0)) continue;
-        tra = pt[0]->tau[i] == tau_a[i] ? pt[0]->tr[i] : HRM_EXP(-tau_a[i]);
-        A = tra * -HRM_EXPM1(-d);
-        for (j = 0; j < n; ++j) {
-            hrm_real g = c->mcheck ? pt[j]->sg[i] : c->st[i] * pt[j]->J;
-            MT += w[j] * g * pt[j]->tr[i];
-            Mabs += HRM_FABS(w[j]) * g;
-        }
-        /* (what rounding leaves of the comparison: hrm__medium_miss) */
-        me = HRM_FABS(h * MT - A) - tra * (32 * HRM__EPS * (tau_b[i] + 8 + Mabs * HRM_FABS(h)));
-        me = me > 0 ? c->em_max[i] * me : 0;
-        if (me > em[i]) em[i] = me;
-    }
+    int i;
+    for (i = 0; i < HRM__CH; ++i) hrm__emission_one(c, i, pt, w, n, h, tau_a, tau_b, em);
 }
 
 /* Whether a rule's nodes resolve the medium. The layer knows tau along
@@ -4779,7 +4801,10 @@ static HRM_DEVICE HRM__CALL void hrm__medium_miss(const hrm__ctx *c, const hrm__
         /* (a first node at the interval's start knows Tr there) */
         tra = pt[0]->tau[i] == tau_a[i] ? pt[0]->tr[i] : HRM_EXP(-tau_a[i]);
         A = tra * -HRM_EXPM1(-d);
-        if (!(A > 64 * HRM__EPS)) continue; /* Tr is 0 there: no light to miss */
+        if (!(A > 64 * HRM__EPS)) { /* Tr is 0 there: no light to miss */
+            hrm__emission_one(c, i, pt, w, n, h, tau_a, tau_b, em);
+            continue;
+        }
         for (j = 0; j < n; ++j) {
             /* the homogeneous medium's sigma_t (Tr) ds/dp at the node */
             hrm_real f0 = sbar * pt[j]->J;
@@ -4823,8 +4848,9 @@ static HRM_DEVICE HRM__CALL void hrm__medium_miss(const hrm__ctx *c, const hrm__
             if (R == 0) R = 1;
         }
         em[i] = R * A * rel;
+        /* the emission's miss from the same sums (hrm__emission_miss) */
+        if (!c->expo && c->em_max[i] > 0) hrm__emission_part(c, i, MT, A, tra, dd, em);
     }
-    hrm__emission_miss(c, pt, w, n, h, tau_a, tau_b, em);
 }
 
 /* A step many optical depths thick: Tr falls by exp(-d) over it, which
