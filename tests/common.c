@@ -13,6 +13,14 @@ int real_is_float(void) { return sizeof(hrm_real) == sizeof(float); }
 
 double real_eps(void) { return real_is_float() ? (double)FLT_EPSILON : DBL_EPSILON; }
 
+void spectrum_one(void *user, hrm_real t, hrm_real out[NCH])
+{
+    int c;
+    (void)user;
+    (void)t;
+    for (c = 0; c < NCH; ++c) out[c] = 1;
+}
+
 double fp_floor(long n, double tau) { return real_eps() * (double)(n + 16) * (1.0 + tau); }
 
 int verbose(void)

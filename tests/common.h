@@ -57,6 +57,7 @@ void bad_input_tests(void);
    ------------------------------------------------------------------------ */
 int real_is_float(void);   /* HRM_REAL is float */
 double real_eps(void);     /* FLT_EPSILON or DBL_EPSILON */
+void spectrum_one(void *user, hrm_real t, hrm_real out[NCH]); /* 1 in every channel */
 
 /* Round-off floor of a relative error after n steps (or samples) with
    optical depth tau: eps (n + 16) (1 + tau). Each step adds a relative

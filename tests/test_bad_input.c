@@ -1234,14 +1234,6 @@ static void bi_order_sig(void *user, hrm_real t, hrm_real sa[NCH], hrm_real ss[N
     }
 }
 
-static void bi_order_li(void *user, hrm_real t, hrm_real out[NCH])
-{
-    int c;
-    (void)user;
-    (void)t;
-    for (c = 0; c < NCH; ++c) out[c] = 1;
-}
-
 static void bi_order(void)
 {
     static const hrm_real unsorted[2] = {4, 2};
@@ -1263,7 +1255,7 @@ static void bi_order(void)
             if (k == 5 && NCH < 2) continue; /* two channels needed */
             memset(&m, 0, sizeof m);
             m.sigma = bi_order_sig;
-            m.Li = bi_order_li;
+            m.Li = spectrum_one;
             o.warp.kind = HRM_WARP_EQUIANGULAR;
             o.warp.delta = 3;
             o.warp.D = 1;
@@ -1321,7 +1313,7 @@ static void bi_workspace(void)
             hrm_status want = k < 3 ? HRM_ERR_BAD_OPTION : HRM_OK;
             memset(&m, 0, sizeof m);
             m.sigma = bi_order_sig;
-            m.Li = bi_order_li;
+            m.Li = spectrum_one;
             o.workspace = k == 3 ? NULL : k == 2 ? NULL : k == 1 ? ws + 8 : ws;
             o.workspace_size = k == 3 ? 0 : k == 0 ? need - 1 : need;
             CHECK(need > 0 && need % 16 == 0, "%s: hrm_workspace_size %lu, a multiple of 16",

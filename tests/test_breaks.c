@@ -127,14 +127,6 @@ static void br_deep_s(void *u, hrm_real t, hrm_real out[NCH])
     for (c = 0; c < NCH; ++c) out[c] = (hrm_real)(0.8 * v);
 }
 
-static void br_one(void *u, hrm_real t, hrm_real out[NCH])
-{
-    int c;
-    (void)u;
-    (void)t;
-    for (c = 0; c < NCH; ++c) out[c] = 1;
-}
-
 /* sigma_s int (1 + 0.3 sin t) exp(-a t) dt, a = 0.5 */
 static double br_F(double t)
 {
@@ -398,7 +390,7 @@ static void br_layer_miss(void)
     m.user = &s;
     m.sigma_a = br_slab_a;
     m.sigma_s = br_slab_s;
-    m.Li = br_one;
+    m.Li = spectrum_one;
     Tr_want = exp(-5.45);
     L_want = 0.8 * (1 - exp(-0.2)) + exp(-0.2) * 0.8 * (1 - exp(-5)) + exp(-5.2) * 0.8 * (1 - exp(-0.25));
     {
@@ -497,7 +489,7 @@ static hrm_result br_scan_cost(hrm_method method, double rtol, int warp, hrm_spe
     memset(&m, 0, sizeof m);
     m.sigma_a = sa;
     m.sigma_s = ss;
-    m.Li = br_one;
+    m.Li = spectrum_one;
     o.rtol = (hrm_real)rtol;
     if (warp) {
         o.warp.kind = HRM_WARP_EQUIANGULAR;
@@ -527,7 +519,7 @@ static const char *br_adaptive_setup(br_scene *s, hrm_spectrum_fn sa, hrm_spectr
     m->user = s;
     m->sigma_a = sa;
     m->sigma_s = ss;
-    m->Li = br_one;
+    m->Li = spectrum_one;
     *o = hrm_default_options(method);
     o->rtol = (hrm_real)rtol;
     if (gk == 1) o->gk_rule = HRM_GK_K7;
@@ -594,7 +586,7 @@ static void br_scan(void)
         m.user = &s;
         m.sigma_a = br_slab_a;
         m.sigma_s = br_slab_s;
-        m.Li = br_one;
+        m.Li = spectrum_one;
         o.steps = 32;
         hrm_solve(&m, 0, 10, &o, &r);
         CHECK_INT(r.njumps, 0, "Simpson, find_jumps 0: no scan");
@@ -927,7 +919,7 @@ static void br_feature_slab(void)
             }
         want = 0.85 * -expm1(-tau);
         memset(&m, 0, sizeof m);
-        m.Li = br_one;
+        m.Li = spectrum_one;
         m.feature = (hrm_real)s.w;
         for (mi = 0; mi < 3; ++mi)
             for (w = 0; w < 3; ++w) {
@@ -1460,7 +1452,7 @@ static void br_jumps(void)
             for (cb = 0; cb < 2; ++cb)
                 for (k = 0; k < 6; ++k) {
                     test_fog thick = {100, 50};
-                    hrm_medium mt = fog_medium(&thick, br_one, cb);
+                    hrm_medium mt = fog_medium(&thick, spectrum_one, cb);
                     hrm_options op = hrm_default_options(ms[mi]);
                     hrm_result with, without;
                     hrm_status st;

@@ -1346,6 +1346,20 @@ static void rg_check_equiangular(const hrm_medium *m, hrm_method meth, double rt
           "%s, rtol %g, %s: L %.8g, exact %.8g with HRM_OK", hrm_method_name(meth), rtol, what, (double)r.L[0], want);
 }
 
+/* m: a scattering-only medium of sigma_s v, as constants or (cb) the
+   callback ss that returns v. */
+static void rg_scatter_medium(hrm_medium *m, int cb, hrm_spectrum_fn ss, double v)
+{
+    int c;
+    memset(m, 0, sizeof *m);
+    if (cb) {
+        m->sigma_s = ss;
+        return;
+    }
+    m->flags = HRM_MEDIUM_HOMOGENEOUS;
+    for (c = 0; c < NCH; ++c) m->const_sigma_s[c] = (hrm_real)v;
+}
+
 static void rg_foot_li(void *u, hrm_real t, hrm_real out[NCH])
 {
     double D = *(const double *)u, x = (double)t;
@@ -1366,7 +1380,7 @@ static void rg_foot_at_end(void)
     /* (at t1 = 0 on [-1, 0], D at most 4 eps is on the ray as far as t
        = t0 + offset can tell: HRM_ERR_SINGULAR) */
     static const double Ds[2][2][2] = {{{1e-15, 1e-17}, {1e-6, 1e-9}}, {{1e-14, 1e-15}, {1e-5, 1e-6}}};
-    int di, end, cb, mi, c;
+    int di, end, cb, mi;
     for (di = 0; di < 2; ++di)
         for (end = 0; end < 2; ++end)
             for (cb = 0; cb < 2; ++cb)
@@ -1375,14 +1389,8 @@ static void rg_foot_at_end(void)
                     char what[64];
                     hrm_medium m;
                     if (!is_adaptive(every_method[mi])) continue;
-                    memset(&m, 0, sizeof m);
+                    rg_scatter_medium(&m, cb, rg_foot_ss, 0.01);
                     m.user = &D;
-                    if (cb) {
-                        m.sigma_s = rg_foot_ss;
-                    } else {
-                        m.flags = HRM_MEDIUM_HOMOGENEOUS;
-                        for (c = 0; c < NCH; ++c) m.const_sigma_s[c] = (hrm_real)0.01;
-                    }
                     m.Li = rg_foot_li;
                     snprintf(what, sizeof what, "%s, foot at t%d, D %g", cb ? "callbacks" : "constants", end, D);
                     rg_check_equiangular(&m, every_method[mi], 1e-4, 0, D, end ? -1 : 0, end ? 0 : 1, want, what);
@@ -1393,8 +1401,8 @@ static void rg_foot_at_end(void)
    smooth on the ray but r resolved by t to an eighth), sigma_s = sigma_t
    = 1, Li = e^-r / r^2: Gauss-Kronrod 6 700 rtol off with HRM_OK in float
    (an independent check's case). t's resolution there counts without the
-   warp: ROUNDOFF, or within 3 rtol. L = e^-delta (1/e - 1/delta), e =
-   delta - 1, exactly. */
+   warp: ROUNDOFF, or within 3 rtol; constants and a sigma_s callback. L =
+   e^-delta (1/e - 1/delta), e = delta - 1, exactly. */
 static void rg_line_li(void *u, hrm_real t, hrm_real out[NCH])
 {
     double r = fabs((double)t - *(const double *)u);
@@ -1404,21 +1412,21 @@ static void rg_line_li(void *u, hrm_real t, hrm_real out[NCH])
 
 static void rg_line_past_end(void)
 {
-    int mi, c, ri;
-    for (ri = 0; ri < 3; ++ri)
-        for (mi = 0; mi < N_METHODS_ALL; ++mi) {
-            double eps = real_is_float() ? (double)FLT_EPSILON : DBL_EPSILON, dl;
-            hrm_medium m;
-            if (!is_adaptive(every_method[mi])) continue;
-            dl = (double)(hrm_real)(1 + 8 * eps);
-            memset(&m, 0, sizeof m);
-            m.user = &dl;
-            m.flags = HRM_MEDIUM_HOMOGENEOUS;
-            for (c = 0; c < NCH; ++c) m.const_sigma_s[c] = 1;
-            m.Li = rg_line_li;
-            rg_check_equiangular(&m, every_method[mi], pow(10, -2 - ri), dl, 0, 0, 1, exp(-dl) * (1 / (dl - 1) - 1 / dl),
-                                 "light 8 ulps past t1");
-        }
+    int mi, ri, cb;
+    for (cb = 0; cb < 2; ++cb)
+        for (ri = 0; ri < 3; ++ri)
+            for (mi = 0; mi < N_METHODS_ALL; ++mi) {
+                double eps = real_eps(), dl;
+                hrm_medium m;
+                if (!is_adaptive(every_method[mi])) continue;
+                dl = (double)(hrm_real)(1 + 8 * eps);
+                rg_scatter_medium(&m, cb, spectrum_one, 1);
+                m.user = &dl;
+                m.Li = rg_line_li;
+                rg_check_equiangular(&m, every_method[mi], pow(10, -2 - ri), dl, 0, 0, 1,
+                                     exp(-dl) * (1 / (dl - 1) - 1 / dl),
+                                     cb ? "callbacks, light 8 ulps past t1" : "constants, light 8 ulps past t1");
+            }
 }
 
 /* A light deep in a varying medium: sigma_t = 100 (1 + 0.5 sin(5 pi t +
