@@ -267,12 +267,12 @@
    Stack (tests/stack.c: the worst variant, double, 3 channels, gcc, clang
    -O2): fixed-step methods 7-11 KiB on constants, 25 at most (the
    transmittance layer 11: a table of 32 panels); the pairs 14 and 31;
-   Gauss-Kronrod 85, nested Simpson 95; the shadow-ray estimator 9; about 2.2
+   Gauss-Kronrod 87, nested Simpson 95; the shadow-ray estimator 9; about 2.2
    times that with 8 channels, half in float, at most (48 + 48 HRM_CHANNELS)
    KiB; twice with a shadow ray solved inside Li. options.workspace
    (hrm_workspace_size bytes, aligned to 16, one a thread) holds the layer (128
    panels), adaptive storage and context instead, same answers: fixed-step
-   methods 7.5 KiB of stack, every method 19, 33 with a nested shadow ray.
+   methods 7.5 KiB of stack, every method 21, 38 with a nested shadow ray.
    GPU kernels: under nvcc or hipcc every function is __host__ __device__
    (HRM_DEVICE; define it to override) and the tables exist on both sides.
    Build the medium in the kernel (callbacks: device functions), give each
@@ -5991,7 +5991,9 @@ typedef struct hrm__gk_io {
     hrm_real Sa[HRM__CH], Sb[HRM__CH], Sm[HRM__CH];
     hrm_real xc, gqc[HRM__CH], xm, gqm[HRM__CH];
     hrm_real M[HRM__CH]; /* out: the medium check's miss (hrm__medium_miss) */
-    int ha, hb, hc, unexplained;
+    int ha, hb;         /* Sa, Sb known: 1, or 2 where a jump alone counts
+                           (hrm__gk_ends_miss) */
+    int hc, unexplained;
 } hrm__gk_io;
 
 /* Whether the halves of [a, b] would place their nodes apart, at t's
@@ -6018,33 +6020,48 @@ static HRM_DEVICE void hrm__source_of(const hrm__pt *pt, int ch, hrm_real *S)
    the rule weighs them). */
 
 /* An interval whose end was sampled (an end of the ray, or the centre of
-   the interval it was split from) sees the sample there: S at the end
-   against its linear extrapolation from the two nearest nodes; a mismatch
-   over the unsampled stretch (a thin layer at the camera or at the
-   surface, a shadow's edge between the end and the first node) counts as
-   error. */
+   the interval it was split from; io->ha, io->hb) sees the sample there:
+   S at the end against its linear extrapolation from the two nearest
+   nodes; a mismatch over the unsampled stretch (a thin layer at the
+   camera or at the surface, a shadow's edge between the end and the first
+   node) counts as error. Where the sample is a half's end in the left-to-
+   right finish (ha or hb 2, hrm__gk_local_one) only a mismatch that a
+   smooth S cannot make counts: S there off the parabola through three
+   nodes by more than 4 times the line's distance from it, which is what
+   the line misses of a smooth S (K's degree makes that no error of K's;
+   counted at every
+   split point, it had split smooth intervals to 0.01 of what K needed:
+   the bench's local Gauss-Kronrod 10 times its evaluations). */
 static HRM_DEVICE HRM__CALL hrm_real hrm__gk_ends_miss(const hrm__ctx *c, const hrm__gk_pair *R, const hrm__pt *pt,
-                                  const hrm_real *f, hrm_real hl, const hrm_real *Sa, const hrm_real *Sb,
-                                  int ch)
+                                  const hrm_real *f, hrm_real hl, const hrm__gk_io *io, int ch)
 {
     hrm_real eend = 0;
     int e, N = R->n;
     for (e = 0; e < 2; ++e) {
-        int j0 = e ? N - 1 : 0, j1 = e ? N - 2 : 1;
-        hrm_real xe = e ? 1 : -1, s0, s1, se, gap, att, r, pred;
-        if (!(e ? Sb : Sa)) continue;
-        s0 = pt[j0].J > 0 ? pt[j0].gq[ch] / pt[j0].J : 0;
-        s1 = pt[j1].J > 0 ? pt[j1].gq[ch] / pt[j1].J : 0;
-        se = (e ? Sb : Sa)[ch];
+        int j0 = e ? N - 1 : 0, j1 = e ? N - 2 : 1, j2 = e ? N - 3 : 2, kind = e ? io->hb : io->ha;
+        hrm_real xe = e ? 1 : -1, s0, s1, s2, se, gap, att, r, pred, line;
+        if (!kind) continue;
+        hrm__source_of(&pt[j0], ch, &s0);
+        hrm__source_of(&pt[j1], ch, &s1);
+        se = (e ? io->Sb : io->Sa)[ch];
         gap = HRM_FABS(xe - R->x[j0]) * HRM_FABS(hl);
         /* weighed by the attenuation at the nearest node, as that node's
            own value is (absolute in closed form, relative to the
            interval's start when coupled) */
         att = pt[j0].gq[ch] != 0 ? f[j0] / pt[j0].gq[ch] : c->closed ? pt[j0].tr[ch] : 1;
         r = (xe - R->x[j0]) / (R->x[j0] - R->x[j1]);
+        line = s0 + (s0 - s1) * r;
         /* fitted to the source's decay too: extrapolated as an
            exponential, which the fit integrates exactly */
-        pred = c->expo == 2 && s0 > 0 && s1 > 0 ? s0 * HRM_EXP(HRM_LOG(s0 / s1) * r) : s0 + (s0 - s1) * r;
+        pred = c->expo == 2 && s0 > 0 && s1 > 0 ? s0 * HRM_EXP(HRM_LOG(s0 / s1) * r) : line;
+        if (kind == 2) {
+            hrm_real x0 = R->x[j0], x1 = R->x[j1], x2 = R->x[j2], q;
+            hrm__source_of(&pt[j2], ch, &s2);
+            q = s0 * (xe - x1) * (xe - x2) / ((x0 - x1) * (x0 - x2)) +
+                s1 * (xe - x0) * (xe - x2) / ((x1 - x0) * (x1 - x2)) +
+                s2 * (xe - x0) * (xe - x1) / ((x2 - x0) * (x2 - x1));
+            if (HRM_FABS(se - q) <= 4 * HRM_FABS(q - line)) continue;
+        }
         eend += HRM_FABS(se - pred) * pt[j0].J * gap * att;
     }
     return eend;
@@ -6157,7 +6174,7 @@ static HRM_DEVICE HRM__CALL void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, co
                     hrm_real *K, hrm_real *ek, hrm__gk_io *io)
 {
     const hrm__gk_pair *R = c->gk;
-    const hrm_real *Sa = io->ha ? io->Sa : 0, *Sb = io->hb ? io->Sb : 0;
+    const hrm_real *Sa = io->ha ? io->Sa : 0;
     hrm__pt pt[15];
     hrm_real hl = (b - a) / 2, mid = (a + b) / 2, off_a = 0, off_b = 0, J, lw[15], big = -1;
     hrm_real eK[HRM__CH], eG[HRM__CH], uK[HRM__CH], uG[HRM__CH], ta_at[HRM__CH];
@@ -6268,7 +6285,7 @@ static HRM_DEVICE HRM__CALL void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, co
             if (tl > io->M[ch]) io->M[ch] = tl;
         }
         eend = 0;
-        if (!is_tau) eend = hrm__gk_ends_miss(c, R, pt, f, hl, Sa, Sb, ch);
+        if (!is_tau) eend = hrm__gk_ends_miss(c, R, pt, f, hl, io, ch);
         if (!is_tau && ta_known && (!c->expo || c->warp != HRM_WARP_NONE))
             eend += hrm__gk_deep_start(c, R, pt, f, hl, Sa, ta_at[ch], ch);
         rabs *= HRM_FABS(hl);
@@ -6324,39 +6341,60 @@ static HRM_DEVICE void hrm__gk_ends(hrm__ctx *c, hrm_real S[2][HRM__CH], int has
 
 /* One interval [a0, b0] finished left to right from tau at its left end
    (acc), its own increments and estimates relative to that end given (K0,
-   E0); a refused interval is split in two and its samples discarded. The
-   source at a0 and b0 where sampled (Sa, Sb, or 0). */
+   E0); a refused interval is split in two and its samples discarded but
+   its centre node's source, which is where its halves meet: that end of
+   each half is known, as in the worst-first driver (an emission that
+   ends just past the centre, before the right half's first node, 0.0043
+   of its width in, is otherwise in no node at any depth: a bump's Le
+   ending 1e-4 of the ray past a dyadic point, every half accepted, L 7
+   rtol off with HRM_OK at rtol 1e-4). The source at a0 and b0 where
+   sampled (Sa, Sb, or 0), and at its centre where the caller's rule
+   sampled it (Sm, or 0). */
 static HRM_DEVICE HRM__CALL void hrm__gk_local_one(hrm__ctx *c, hrm_real a0, hrm_real b0, const hrm_real *K0,
                               const hrm_real *E0, const hrm_real *Sa, const hrm_real *Sb,
-                              hrm_real acc[HRM__NY])
+                              const hrm_real *Sm, hrm_real acc[HRM__NY])
 {
     hrm_real stack_a[HRM_MAX_DEPTH + 2], stack_b[HRM_MAX_DEPTH + 2], stack_r[HRM_MAX_DEPTH + 2];
+    hrm_real stack_s[HRM_MAX_DEPTH + 2][HRM__CH]; /* the source at b, */
+    char stack_h[HRM_MAX_DEPTH + 2];              /* where known (1: the
+                                                     caller's, 2: a centre
+                                                     node's; hrm__gk_io) */
+    hrm_real s_a[HRM__CH]; /* at the next interval's start (the last */
+    int have_a = Sa != 0;  /* accepted one's end), where known */
     int stack_d[HRM_MAX_DEPTH + 2], top = 1, i;
 
+    hrm__fill(s_a, HRM__CH, 0);
+    hrm__fill(stack_s[0], HRM__CH, 0);
     stack_a[0] = a0;
     stack_b[0] = b0;
     stack_d[0] = 0;
     stack_r[0] = 0;
+    stack_h[0] = Sb != 0;
+    if (Sa) memcpy(s_a, Sa, sizeof s_a);
+    if (Sb) memcpy(stack_s[0], Sb, sizeof stack_s[0]);
     while (top > 0) {
         hrm_real a = stack_a[top - 1], b = stack_b[top - 1], parent = stack_r[top - 1];
-        hrm_real K[HRM__NY], ek[HRM__NY], y1[HRM__NY], ratio;
-        int d = stack_d[--top], split;
+        hrm_real K[HRM__NY], ek[HRM__NY], y1[HRM__NY], ratio, s_b[HRM__CH], s_m[HRM__CH];
+        int d = stack_d[--top], split, have_b = stack_h[top], have_m = d > 0 || Sm;
         long reserve = c->gk->n * ((long)top + 2);
+        memcpy(s_b, stack_s[top], sizeof s_b);
         if (d == 0) { /* integrated already, relative to its left end */
             for (i = 0; i < HRM__NY; ++i) {
                 hrm_real f = i < HRM__CH || c->closed ? 1 : HRM_EXP(-acc[i % HRM__CH]);
                 K[i] = f * K0[i];
                 ek[i] = f * E0[i];
             }
+            if (Sm) memcpy(s_m, Sm, sizeof s_m);
         } else {
             hrm__gk_io io;
-            io.ha = a == a0 && Sa;
-            io.hb = b == b0 && Sb;
+            io.ha = have_a;
+            io.hb = have_b;
             io.hc = 0;
-            if (io.ha) memcpy(io.Sa, Sa, sizeof io.Sa);
-            if (io.hb) memcpy(io.Sb, Sb, sizeof io.Sb);
+            memcpy(io.Sa, s_a, sizeof io.Sa);
+            memcpy(io.Sb, s_b, sizeof io.Sb);
             hrm__gk(c, a, b, acc, K, ek, &io);
             hrm__with_miss(ek, io.M);
+            memcpy(s_m, io.Sm, sizeof s_m);
         }
         if (c->status != HRM_OK) return;
         for (i = 0; i < HRM__NY; ++i) y1[i] = acc[i] + K[i];
@@ -6375,16 +6413,22 @@ static HRM_DEVICE HRM__CALL void hrm__gk_local_one(hrm__ctx *c, hrm_real a0, hrm
             stack_a[top] = (a + b) / 2;
             stack_b[top] = b;
             stack_r[top] = ratio;
+            stack_h[top] = (char)have_b;
+            memcpy(stack_s[top], s_b, sizeof s_b);
             stack_d[top++] = d + 1;
             stack_a[top] = a;
             stack_b[top] = (a + b) / 2;
             stack_r[top] = ratio;
+            stack_h[top] = (char)(have_m ? 2 : 0);
+            memcpy(stack_s[top], s_m, sizeof s_m);
             stack_d[top++] = d + 1;
             c->stats.rejected++;
         } else {
             memcpy(acc, y1, sizeof y1);
             hrm__accepted(c, ek);
             c->stats.steps++;
+            have_a = have_b;
+            memcpy(s_a, s_b, sizeof s_a);
         }
     }
 }
@@ -6395,7 +6439,7 @@ static HRM_DEVICE HRM__CALL void hrm__gk_local_one(hrm__ctx *c, hrm_real a0, hrm
    left end is final. */
 static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__gk_local(hrm__ctx *c, int n0, hrm_real acc[HRM__NY])
 {
-    hrm_real K0[HRM_GK_INITIAL][HRM__NY], E0[HRM_GK_INITIAL][HRM__NY];
+    hrm_real K0[HRM_GK_INITIAL][HRM__NY], E0[HRM_GK_INITIAL][HRM__NY], Sm0[HRM_GK_INITIAL][HRM__CH];
     hrm_real span = c->pb - c->pa, zero[HRM__NY], tot[HRM__NY], S[2][HRM__CH];
     int k, ch, has[2];
 
@@ -6414,6 +6458,7 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__gk_local(hrm__ctx *c, int n0
         memcpy(io.Sb, S[1], sizeof io.Sb);
         hrm__gk(c, a, b, zero, K0[k], E0[k], &io);
         hrm__with_miss(E0[k], io.M);
+        memcpy(Sm0[k], io.Sm, sizeof Sm0[k]);
         for (ch = 0; ch < HRM__CH; ++ch) {
             hrm_real f = c->closed ? 1 : HRM_EXP(-tot[ch]);
             tot[ch] += K0[k][ch];
@@ -6426,7 +6471,7 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__gk_local(hrm__ctx *c, int n0
     for (k = 0; k < n0 && c->status == HRM_OK; ++k)
         hrm__gk_local_one(c, c->pa + span * ((hrm_real)k / (hrm_real)n0),
                           k + 1 == n0 ? c->pb : c->pa + span * ((hrm_real)(k + 1) / (hrm_real)n0),
-                          K0[k], E0[k], k == 0 ? S[0] : 0, k + 1 == n0 && has[1] ? S[1] : 0, acc);
+                          K0[k], E0[k], k == 0 ? S[0] : 0, k + 1 == n0 && has[1] ? S[1] : 0, Sm0[k], acc);
 }
 
 /* Worst-first refinement (QUADPACK QAG's strategy), shared by nested
@@ -6885,7 +6930,7 @@ static HRM_DEVICE HRM__CALL void hrm__gk_global(hrm__ctx *c, int n0, hrm_real ac
     hrm__finish_scale(c, tot, acc);
     for (i = 0; i < w.n && c->status == HRM_OK; ++i)
         hrm__gk_local_one(c, iv[i].h.a, iv[i].h.b, iv[i].h.V, iv[i].h.E, iv[i].io.ha ? iv[i].io.Sa : 0,
-                          iv[i].io.hb ? iv[i].io.Sb : 0, acc);
+                          iv[i].io.hb ? iv[i].io.Sb : 0, iv[i].io.Sm, acc);
 }
 
 
