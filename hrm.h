@@ -351,12 +351,13 @@
    estimate and a warning: H_MIN (a step at h_min failed), MAX_EVALS
    (stats.evals <= max_evals, a user warp's calls 4 max_evals), STORAGE (a
    finish HRM_MAX_DEPTH deep), ROUNDOFF (bisection no longer helps, or t
-   resolves no step, or a light's distance to 2 rtol), TOLERANCE (accepted
-   estimates over atol + 3 rtol |L|, also at the scale found), RTOL_CLIPPED
-   (rtol < 100 eps, raised); a piece's (between breakpoints) H_MIN or TOLERANCE
-   only where all exceed atol + rtol |L|. result.error: their sum per channel,
-   any status (-1: fixed steps). Every L (but the RTE form's fixed steps, Le
-   per length) is in [0, the largest S/sigma_t sampled times 1 - Tr], cuts in
+   resolves no step, or a light's distance or a located jump's place to 2
+   rtol), TOLERANCE (accepted estimates over atol + 3 rtol |L|, also at the
+   scale found), RTOL_CLIPPED (rtol < 100 eps, raised); a piece's (between
+   breakpoints) H_MIN or TOLERANCE only where all exceed atol + rtol |L|.
+   result.error: their sum per channel (with a located jump's bracket), any
+   status (-1: fixed steps). Every L (but the RTE form's fixed steps, Le per
+   length) is in [0, the largest S/sigma_t sampled times 1 - Tr], cuts in
    result.error (fixed steps to 2x, Monte Carlo any; past: bound, TOLERANCE).
    Not seen: a feature between a step's samples (a light needs its warp, an
    occluder its breakpoints). Munoz's, Gonterman's controls unverified.
@@ -414,16 +415,15 @@
    EXPONENTIAL FITTING (options.exponential)
    ==========================================================================
    In a thick medium Tr S falls by exp(-sigma_t h) over a step. With 1,
-   Simpson, Gauss-Kronrod and the pairs (optical-depth form; tau from a
-   closed form, the callback or the layer) factor the exponential of tau
-   (its least slope between nodes) out of Tr S and integrate the rule's
-   interpolant of the rest against it exactly
-   (Legendre moments of exp(-b (y + 1))). With 2, where the source falls
-   faster than Tr, the slope of -ln(Tr S) instead (a light seen through
-   the medium). Without a warp: 1 is exact for a homogeneous medium and a
-   source polynomial of the rule's degree, 2 for a source C exp(-mu t),
-   at any step count and depth; L >= 0 always; sigma_t -> 0 gives the plain
-   rule. Other methods, the RTE form, coupled tau, the stream:
+   Simpson, Gauss-Kronrod and the pairs (optical-depth form; tau from a closed
+   form, the callback or the layer) factor the exponential of tau (its least
+   slope between nodes) out of Tr S and integrate the rule's interpolant of the
+   rest against it exactly (Legendre moments of exp(-b (y + 1))). With 2, where
+   the source falls faster than Tr, the slope of -ln(Tr S) instead (a light
+   seen through the medium). Without a warp: 1 is exact for a homogeneous
+   medium and a source polynomial of the rule's degree, 2 for a source C
+   exp(-mu t), at any step count and depth; L >= 0 always; sigma_t -> 0 gives
+   the plain rule. Other methods, the RTE form, coupled tau, the stream:
    HRM_ERR_BAD_OPTION. For thick media and clouds (2: Li attenuated too).
 
    ==========================================================================
