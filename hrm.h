@@ -6033,9 +6033,9 @@ static HRM_DEVICE void hrm__source_of(const hrm__pt *pt, int ch, hrm_real *S)
    smooth S cannot make counts: S there off the parabola through three
    nodes by more than 4 times the line's distance from it, which is what
    the line misses of a smooth S (K's degree makes that no error of K's;
-   counted at every
-   split point, it had split smooth intervals to 0.01 of what K needed:
-   the bench's local Gauss-Kronrod 10 times its evaluations). */
+   counted at every split point, it had split smooth intervals to 0.01 of
+   what K needed: the bench's local Gauss-Kronrod 10 times its
+   evaluations). */
 static HRM_DEVICE HRM__CALL hrm_real hrm__gk_ends_miss(const hrm__ctx *c, const hrm__gk_pair *R, const hrm__pt *pt,
                                   const hrm_real *f, hrm_real hl, const hrm__gk_io *io, int ch)
 {
@@ -6352,8 +6352,8 @@ static HRM_DEVICE void hrm__gk_ends(hrm__ctx *c, hrm_real S[2][HRM__CH], int has
    of its width in, is otherwise in no node at any depth: a bump's Le
    ending 1e-4 of the ray past a dyadic point, every half accepted, L 7
    rtol off with HRM_OK at rtol 1e-4). The source at a0 and b0 where
-   sampled (Sa, Sb, or 0), and at its centre where the caller's rule
-   sampled it (Sm, or 0). */
+   sampled (Sa, Sb, or 0), and at its centre, which the caller's rule
+   sampled (Sm). */
 static HRM_DEVICE HRM__CALL void hrm__gk_local_one(hrm__ctx *c, hrm_real a0, hrm_real b0, const hrm_real *K0,
                               const hrm_real *E0, const hrm_real *Sa, const hrm_real *Sb,
                               const hrm_real *Sm, hrm_real acc[HRM__NY])
@@ -6379,7 +6379,7 @@ static HRM_DEVICE HRM__CALL void hrm__gk_local_one(hrm__ctx *c, hrm_real a0, hrm
     while (top > 0) {
         hrm_real a = stack_a[top - 1], b = stack_b[top - 1], parent = stack_r[top - 1];
         hrm_real K[HRM__NY], ek[HRM__NY], y1[HRM__NY], ratio, s_b[HRM__CH], s_m[HRM__CH];
-        int d = stack_d[--top], split, have_b = stack_h[top], have_m = d > 0 || Sm;
+        int d = stack_d[--top], split, have_b = stack_h[top];
         long reserve = c->gk->n * ((long)top + 2);
         memcpy(s_b, stack_s[top], sizeof s_b);
         if (d == 0) { /* integrated already, relative to its left end */
@@ -6388,7 +6388,7 @@ static HRM_DEVICE HRM__CALL void hrm__gk_local_one(hrm__ctx *c, hrm_real a0, hrm
                 K[i] = f * K0[i];
                 ek[i] = f * E0[i];
             }
-            if (Sm) memcpy(s_m, Sm, sizeof s_m);
+            memcpy(s_m, Sm, sizeof s_m);
         } else {
             hrm__gk_io io;
             io.ha = have_a;
@@ -6423,7 +6423,7 @@ static HRM_DEVICE HRM__CALL void hrm__gk_local_one(hrm__ctx *c, hrm_real a0, hrm
             stack_a[top] = a;
             stack_b[top] = (a + b) / 2;
             stack_r[top] = ratio;
-            stack_h[top] = (char)(have_m ? 2 : 0);
+            stack_h[top] = 2;
             memcpy(stack_s[top], s_m, sizeof s_m);
             stack_d[top++] = d + 1;
             c->stats.rejected++;
