@@ -399,16 +399,16 @@
    0): HRM_ERR_BAD_OPTION. Found jumps (find_jumps 0, the default): nested
    Simpson and global Gauss-Kronrod bisect on the source an interval that keeps
    30% of its parent's estimate three splits in a row, where refining on would
-   cost more than 64 evaluations; a jump of 1% or more is located to 4 ulps of
-   t, made a breakpoint, the solve run again (three halvings that split a
-   smooth change end the search). Every adaptive method (fixed-step ones with
-   find_jumps 1) first scans sigma_t (callbacks, no Tr callback) at the layer's
-   first panels' degree-8 points (33, one panel a piece at least;
-   medium.feature: gaps of at most it, 4097 points at most): a factor 2 between
-   neighbours is bisected to adjacent abscissae, a jump or edge made a
-   breakpoint at the second, a steep smooth change or a sample 1/8 off both
-   neighbours (1/64 if evenly at medium.feature) taught to the layer; the scan
-   ends where its tau passes 2 ln(64 / rtol). Located: result.jumps (the next pixel's
+   cost more than 64 evaluations; a jump of 1% or more is located to adjacent
+   abscissae and made a breakpoint at the second, the solve run again (three
+   halvings that split a smooth change end the search). Every adaptive method
+   (fixed-step ones with find_jumps 1) first scans sigma_t (callbacks, no Tr
+   callback) at the layer's first panels' degree-8 points (33, one panel a
+   piece at least; medium.feature: gaps of at most it, 4097 points at most): a
+   factor 2 between neighbours is bisected so too, a jump or edge made a
+   breakpoint, a steep smooth change or a sample 1/8 off both neighbours (1/64
+   if evenly at medium.feature) taught to the layer; the scan ends where its
+   tau passes 2 ln(64 / rtol). Located: result.jumps (the next pixel's
    breakpoints). -1: neither. Finer detail needs medium.feature.
 
    ==========================================================================
@@ -1585,7 +1585,8 @@ typedef struct hrm__ctx {
                                   shrink, and a jump in it, at cand_t */
     hrm_real cand_t;
     hrm_real cand_miss[HRM__CH]; /* what placing it there may miss: the
-                                  jump times Tr times half its bracket */
+                                  jump times Tr times half its bracket (its
+                                  whole gap between adjacent abscissae) */
     hrm_real jump_miss[HRM__CH]; /* the same, summed over the jumps made
                                   breakpoints (in result.error) */
     int njumps;
@@ -7715,8 +7716,8 @@ static HRM_DEVICE void hrm__source_at(hrm__ctx *c, hrm_real p, hrm_real S[HRM__C
 }
 
 /* Locate the jump inside [pl, pr] (in p) by bisection on the source:
-   the half whose ends differ more keeps it, until its ends are 4 ulps of
-   t apart (about 50 evaluations in double on a unit interval). A smooth
+   the half whose ends differ more keeps it, until its ends are adjacent
+   abscissae (about 50 evaluations in double on a unit interval). A smooth
    integrand splits its change between the halves, a jump keeps all of
    it in one: three halvings in a row that keep less than 3/4 of the
    change end the search, as for the medium (hrm__locate_sigma_jump). A
@@ -7727,13 +7728,17 @@ static HRM_DEVICE HRM__CALL int hrm__locate_jump(hrm__ctx *c, hrm_real pl, hrm_r
 {
     hrm_real Sl[HRM__CH], Sr[HRM__CH], Sm[HRM__CH], trl[HRM__CH], trr[HRM__CH], trm[HRM__CH];
     hrm_real ol, or_, om, d = 0, big = 0;
-    int it, i, smooth = 0;
+    int it, i, smooth = 0, fine = 0;
     hrm__source_at(c, pl, Sl, &ol, trl);
     hrm__source_at(c, pr, Sr, &or_, trr);
     for (it = 0; it < 64 && c->status == HRM_OK; ++it) {
-        hrm_real pm = pl / 2 + pr / 2, dl = 0, dr = 0;
+        hrm_real pm = pl / 2 + pr / 2, dl = 0, dr = 0, J;
         if (!(pm > pl && pm < pr)) break;
-        if (or_ - ol <= 4 * HRM__EPS * (HRM_FABS(c->t0 + ol) + HRM_FABS(c->t0 + or_)) / 2) break;
+        hrm__map(c, pm, &om, &J);
+        if (hrm__abscissa(c, om) == hrm__abscissa(c, ol) || hrm__abscissa(c, om) == hrm__abscissa(c, or_)) {
+            fine = 1; /* down to t's resolution: adjacent abscissae */
+            break;
+        }
         hrm__source_at(c, pm, Sm, &om, trm);
         for (i = 0, big = 0; i < HRM__CH; ++i) {
             dl += HRM_FABS(Sm[i] - Sl[i]);
@@ -7763,11 +7768,18 @@ static HRM_DEVICE HRM__CALL int hrm__locate_jump(hrm__ctx *c, hrm_real pl, hrm_r
         big += HRM_FABS(Sl[i]) > HRM_FABS(Sr[i]) ? HRM_FABS(Sl[i]) : HRM_FABS(Sr[i]);
     }
     if (!(d > HRM__R(0.01) * big)) return 0;
-    *tj = c->t0 + (ol / 2 + or_ / 2);
     /* the jump lies anywhere in the bracket: the pieces on either side of
        *tj extend their sides over up to half of it, the jump times that
-       at Tr there (the bracket's start's) */
-    for (i = 0; i < HRM__CH; ++i) c->cand_miss[i] = HRM_FABS(Sr[i] - Sl[i]) * (or_ - ol) / 2 * trl[i];
+       at Tr there (the bracket's start's); between adjacent abscissae, *tj
+       the second (exact where the jump is at an abscissa, as the callbacks
+       see it), up to the whole gap */
+    *tj = c->t0 + (ol / 2 + or_ / 2);
+    d = (or_ - ol) / 2;
+    if (fine && hrm__abscissa(c, or_) > hrm__abscissa(c, ol)) {
+        *tj = hrm__abscissa(c, or_);
+        d = *tj - hrm__abscissa(c, ol);
+    }
+    for (i = 0; i < HRM__CH; ++i) c->cand_miss[i] = HRM_FABS(Sr[i] - Sl[i]) * d * trl[i];
     return 1;
 }
 
