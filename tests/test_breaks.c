@@ -974,7 +974,7 @@ static void br_ulp_faces(void)
 {
     static const hrm_method ms[] = {HRM_NESTED_SIMPSON, HRM_GAUSS_KRONROD, HRM_DORMAND_PRINCE,
                                     HRM_BOGACKI_SHAMPINE};
-    int k, mi, w, c, ok_runs = 0, runs = 0;
+    int k, mi, w, c, ok_runs = 0, runs = 0, alarms = 0;
     for (k = 0; k < 40; ++k) {
         br_thin s;
         br_via via;
@@ -1005,19 +1005,25 @@ static void br_ulp_faces(void)
                 st = hrm_solve(&m, 14, 16, &o, &r);
                 runs++;
                 ok_runs += st == HRM_OK;
+                alarms += st != HRM_OK && fabs((double)r.L[0] - want) <= 1e-4 * want;
                 for (c = 0; c < NCH; ++c)
                     CHECK(st != HRM_OK || fabs((double)r.L[c] - want) <= 3e-4 * want,
                           "slab [%.7g, %.7g], sigma_t %g, %s, warp %d: HRM_OK %.2g rtol off (rtol 1e-4)", (double)s.a, (double)s.b,
                           s.v, hrm_method_name(ms[mi]), w, fabs((double)r.L[c] - want) / want / 1e-4);
             }
     }
-    /* (not passed by warning, in double: 457 of 480 HRM_OK (417 with the faces
-       to 4 ulps), the rest HRM_WARN_ROUNDOFF under a warp in a vacuum with
-       answers within 1e-3 rtol: false alarms. Float warns on most, 182 of 480
-       HRM_OK: t's resolution at 15, 1e-6, is a thousandth of the slab, and the
-       warped steps reach h_min or round-off there) */
-    if (!real_is_float()) CHECK(ok_runs >= 450, "thin slab at t = 15: %d of %d solves HRM_OK", ok_runs, runs);
-    if (verbose()) NOTE("thin slab at t = 15: %d of %d solves HRM_OK", ok_runs, runs);
+    /* Not passed by warning: in double 478 of 480 HRM_OK; the two others
+       are global Gauss-Kronrod under the light's warp in a vacuum, nodes
+       refined towards a face to t's resolution (HRM_WARN_ROUNDOFF, answers
+       within 1e-8 rtol). Before, 417 with the faces to 4 ulps, and 457 with
+       nodes moved 64 ulps inside a piece onto one abscissa taken for t's
+       resolution (ROUNDOFF on answers within 1e-3 rtol). Float warns on
+       most, 304 of 480 HRM_OK: t's resolution at 15, 1e-6, is a thousandth
+       of the slab, and the warped steps reach h_min or round-off there. */
+    if (!real_is_float())
+        CHECK(alarms <= 2, "thin slab at t = 15: %d warnings on answers within rtol (%d of %d HRM_OK)", alarms,
+              ok_runs, runs);
+    if (verbose()) NOTE("thin slab at t = 15: %d of %d solves HRM_OK, %d warnings within rtol", ok_runs, runs, alarms);
 }
 
 /* A notch of 5% as wide as medium.feature (0.0358, 1/280 of the ray
