@@ -1560,6 +1560,7 @@ typedef struct hrm__ctx {
     hrm_real s_lo, s_hi;       /* the current piece's ends where they are
                                   breakpoints (else -inf, +inf): samples
                                   at them are taken on the piece's side */
+    hrm_real o_lo, o_hi;       /* the same as offsets (brk_off) */
     hrm_real w_delta;          /* equiangular: the light's foot on the ray */
     int find_jumps;            /* locate jumps (options.find_jumps) */
     int scan;                  /* scan the medium for jumps first */
@@ -6193,9 +6194,16 @@ static HRM_DEVICE HRM__CALL void hrm__gk(hrm__ctx *c, hrm_real a, hrm_real b, co
 
     for (j = 0; j < N; ++j) hrm__eval(c, 2 * j + 1 == N ? mid : mid + hl * R->x[j], &pt[j]);
     hrm__fill(io->M, HRM__CH, 0);
-    /* the ends' offsets, mapped once for every use below */
+    /* the ends' offsets, mapped once for every use below, within the
+       piece (a breakpoint's offset mapped to p and back may land an ulp
+       past it, where the layer's tau holds that ulp of the next piece's
+       sigma_t: a vacuum's interval at a slab's face at t = 15 kept a
+       medium miss of 1e-13 that no split reduced, and refined to t's
+       resolution) */
     hrm__map(c, a, &off_a, &J);
     hrm__map(c, b, &off_b, &J);
+    off_a = off_a < c->o_lo ? c->o_lo : off_a;
+    off_b = off_b > c->o_hi ? c->o_hi : off_b;
     wmiss = hrm__gk_warp_miss(c, R, pt, a, b, off_a, off_b, &je);
     if (c->mcheck || c->homog) {
         /* the nodes against the layer's tau at the interval's ends
@@ -7306,8 +7314,8 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, 
     c->T = t1 - t0;
     c->range = hrm__range(c->T);
     c->rng = o->seed;
-    c->s_lo = -HRM__R(HUGE_VAL);
-    c->s_hi = HRM__R(HUGE_VAL);
+    c->s_lo = c->o_lo = -HRM__R(HUGE_VAL);
+    c->s_hi = c->o_hi = HRM__R(HUGE_VAL);
     c->homog = (m->flags & HRM_MEDIUM_HOMOGENEOUS) != 0;
     c->per_length = (m->flags & HRM_EMISSION_PER_LENGTH) != 0;
     c->rte = o->form == HRM_FORM_RTE && mi->rte;
@@ -7640,8 +7648,10 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__solve_broken_in(hrm__ctx *c,
         if (!(P[k + 1] > P[k])) continue;
         c->pa = P[k];
         c->pb = P[k + 1];
-        c->s_lo = k == 0 ? -HRM__R(HUGE_VAL) : c->t0 + c->brk_off[k - 1];
-        c->s_hi = k + 1 == n ? HRM__R(HUGE_VAL) : c->t0 + c->brk_off[k];
+        c->o_lo = k == 0 ? -HRM__R(HUGE_VAL) : c->brk_off[k - 1];
+        c->o_hi = k + 1 == n ? HRM__R(HUGE_VAL) : c->brk_off[k];
+        c->s_lo = c->t0 + c->o_lo;
+        c->s_hi = c->t0 + c->o_hi;
         if (c->src == HRM__TAU_STREAM && k > 0) hrm__stream_piece(c, c->brk_off[k - 1]);
         c->scale_fixed = 0;
         hrm__fill(c->scale, HRM__NY, 0);
@@ -7684,8 +7694,8 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__solve_broken_in(hrm__ctx *c,
     memcpy(c->err_acc, err, sizeof err);
     c->pa = pa;
     c->pb = pb;
-    c->s_lo = -HRM__R(HUGE_VAL);
-    c->s_hi = HRM__R(HUGE_VAL);
+    c->s_lo = c->o_lo = -HRM__R(HUGE_VAL);
+    c->s_hi = c->o_hi = HRM__R(HUGE_VAL);
 }
 
 /* The tables in a frame of their own without a workspace, which a ray
