@@ -539,6 +539,19 @@ hrm_options make_options(hrm_method m, int steps, hrm_form form)
     return o;
 }
 
+hrm_options warp_options(hrm_method m, double rtol, int w, double delta, double D)
+{
+    hrm_options o = hrm_default_options(m);
+    o.rtol = (hrm_real)rtol;
+    if (w == 1) o.warp.kind = HRM_WARP_DISTANCE;
+    if (w == 2) {
+        o.warp.kind = HRM_WARP_EQUIANGULAR;
+        o.warp.delta = (hrm_real)delta;
+        o.warp.D = (hrm_real)D;
+    }
+    return o;
+}
+
 hrm_status solve_opt(const problem *p, double t0, double t1, const hrm_options *o, hrm_result *r)
 {
     hrm_medium m = problem_medium(p);

@@ -241,6 +241,9 @@ int is_pair(hrm_method m);      /* the embedded Runge-Kutta pairs */
 const char *form_name(hrm_form f);
 
 hrm_options make_options(hrm_method m, int steps, hrm_form form);
+/* method m's defaults at rtol under warp w: 0 none, 1 distance, 2 the
+   equiangular warp of a light D from the ray at its foot delta */
+hrm_options warp_options(hrm_method m, double rtol, int w, double delta, double D);
 hrm_status solve_opt(const problem *p, double t0, double t1, const hrm_options *o,
                      hrm_result *r);
 hrm_status solve(const problem *p, double t0, double t1, hrm_method m, int n, hrm_form form,

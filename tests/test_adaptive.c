@@ -1367,20 +1367,13 @@ static hrm_status ad_kink_solve(const ad_kink_scene *p, int v, double rtol, int 
                                         HRM_BOGACKI_SHAMPINE};
     hrm_method method = v >= 5 && v < 15 ? pairs[(v - 5) % 5] : v ? HRM_GAUSS_KRONROD : HRM_NESTED_SIMPSON;
     hrm_medium m = fog_medium((void *)p, ad_kink_li, med);
-    hrm_options o = hrm_default_options(method);
+    hrm_options o = warp_options(method, rtol, w, p->k[0], 0.2);
     hrm_result r;
     hrm_status st;
-    o.rtol = (hrm_real)rtol;
     if (med == 2) o.tau_mode = HRM_TAU_COUPLED;
     if (v == 2 || v == 4 || v == 16 || v == 18) o.gk_rule = HRM_GK_K7;
     if (v == 3 || v == 4 || v >= 17) o.gk_mode = HRM_GK_LOCAL;
     if (v >= 10) o.exponential = 1;
-    if (w == 1) o.warp.kind = HRM_WARP_DISTANCE;
-    if (w == 2) {
-        o.warp.kind = HRM_WARP_EQUIANGULAR;
-        o.warp.delta = (hrm_real)p->k[0];
-        o.warp.D = (hrm_real)0.2;
-    }
     st = hrm_solve(&m, 0, 1, &o, &r);
     *e = fabs((double)r.L[0] - ad_kink_L(p)) / (rtol * ad_kink_L(p));
     return st;

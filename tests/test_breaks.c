@@ -923,18 +923,11 @@ static void br_feature_slab(void)
         m.feature = (hrm_real)s.w;
         for (mi = 0; mi < 3; ++mi)
             for (w = 0; w < 3; ++w) {
-                hrm_options o = hrm_default_options(ms[mi]);
+                hrm_options o = warp_options(ms[mi], 1e-3, w, 0.7, 0.2);
                 hrm_result r;
                 hrm_status st;
                 /* one callback, or two (alternately) */
                 br_sigma_form(&m, &via, br_bump_sigma, &s, (k + w) % 2);
-                o.rtol = (hrm_real)1e-3;
-                if (w == 1) o.warp.kind = HRM_WARP_DISTANCE;
-                if (w == 2) {
-                    o.warp.kind = HRM_WARP_EQUIANGULAR;
-                    o.warp.delta = (hrm_real)0.7;
-                    o.warp.D = (hrm_real)0.2;
-                }
                 st = hrm_solve(&m, 0, (hrm_real)T, &o, &r);
                 ok_runs += st == HRM_OK;
                 for (c = 0; c < NCH; ++c)
@@ -991,17 +984,10 @@ static void br_ulp_faces(void)
         m.feature = (hrm_real)0.0008;
         for (mi = 0; mi < 4; ++mi)
             for (w = 0; w < 3; ++w) {
-                hrm_options o = hrm_default_options(ms[mi]);
+                hrm_options o = warp_options(ms[mi], 1e-4, w, 15.2, 0.3);
                 hrm_result r;
                 hrm_status st;
                 br_sigma_form(&m, &via, br_thin_slab, &s, (k + w) % 2);
-                o.rtol = (hrm_real)1e-4;
-                if (w == 1) o.warp.kind = HRM_WARP_DISTANCE;
-                if (w == 2) {
-                    o.warp.kind = HRM_WARP_EQUIANGULAR;
-                    o.warp.delta = (hrm_real)15.2;
-                    o.warp.D = (hrm_real)0.3;
-                }
                 st = hrm_solve(&m, 14, 16, &o, &r);
                 runs++;
                 ok_runs += st == HRM_OK;

@@ -874,15 +874,7 @@ static hrm_medium tr_cb_medium(void *user, hrm_spectrum_fn sa, hrm_spectrum_fn s
 
 static hrm_options tr_ad_options(hrm_method m, double rtol, int w, double delta, double D)
 {
-    hrm_options o = hrm_default_options(m);
-    o.rtol = (hrm_real)(real_is_float() ? rtol * 100 : rtol);
-    if (w == 1) o.warp.kind = HRM_WARP_DISTANCE;
-    if (w == 2) {
-        o.warp.kind = HRM_WARP_EQUIANGULAR;
-        o.warp.delta = (hrm_real)delta;
-        o.warp.D = (hrm_real)D;
-    }
-    return o;
+    return warp_options(m, real_is_float() ? rtol * 100 : rtol, w, delta, D);
 }
 
 typedef struct tr_kinked {
