@@ -7740,7 +7740,7 @@ static HRM_DEVICE void hrm__source_at(hrm__ctx *c, hrm_real p, hrm_real S[HRM__C
 static HRM_DEVICE HRM__CALL int hrm__locate_jump(hrm__ctx *c, hrm_real pl, hrm_real pr, hrm_real *tj)
 {
     hrm_real Sl[HRM__CH], Sr[HRM__CH], Sm[HRM__CH], trl[HRM__CH], trr[HRM__CH], trm[HRM__CH];
-    hrm_real ol, or_, om, d = 0, big = 0;
+    hrm_real ol, or_, om, d = 0, big = 0, gap;
     int it, i, smooth = 0, fine = 0;
     hrm__source_at(c, pl, Sl, &ol, trl);
     hrm__source_at(c, pr, Sr, &or_, trr);
@@ -7787,12 +7787,12 @@ static HRM_DEVICE HRM__CALL int hrm__locate_jump(hrm__ctx *c, hrm_real pl, hrm_r
        the second (exact where the jump is at an abscissa, as the callbacks
        see it), up to the whole gap */
     *tj = c->t0 + (ol / 2 + or_ / 2);
-    d = (or_ - ol) / 2;
+    gap = (or_ - ol) / 2;
     if (fine && hrm__abscissa(c, or_) > hrm__abscissa(c, ol)) {
         *tj = hrm__abscissa(c, or_);
-        d = *tj - hrm__abscissa(c, ol);
+        gap = *tj - hrm__abscissa(c, ol);
     }
-    for (i = 0; i < HRM__CH; ++i) c->cand_miss[i] = HRM_FABS(Sr[i] - Sl[i]) * d * trl[i];
+    for (i = 0; i < HRM__CH; ++i) c->cand_miss[i] = HRM_FABS(Sr[i] - Sl[i]) * gap * trl[i];
     return 1;
 }
 
@@ -7893,7 +7893,7 @@ static HRM_DEVICE HRM__CALL int hrm__locate_sigma_jump(hrm__ctx *c, hrm_real a, 
     *off = edge ? (fa == 0 ? b : a) : a / 2 + b / 2;
     if (fine) {
         /* sigma_t changes between two adjacent abscissae: the breakpoint
-           at the second, exact for the medium the callbacks give (at the
+           at the second, exact where the face is at an abscissa (at the
            bracket's middle or end, a slab at t = 15 in float, sigma_t 700
            over 0.002, was up to 8 ulps thick or thin: L 8 rtol off with
            HRM_OK at rtol 1e-4; in a vacuum, 57% of such solves) */
