@@ -1557,10 +1557,10 @@ typedef struct hrm__ctx {
     hrm_real h_res;            /* the smallest step t resolves (no warp) */
     int nbrk;                  /* breakpoints strictly inside the ray */
     hrm_real brk_off[HRM_MAX_BREAKS]; /* their offsets from t0 */
-    hrm_real s_lo, s_hi;       /* the current piece's ends where they are
-                                  breakpoints (else -inf, +inf): samples
-                                  at them are taken on the piece's side */
-    hrm_real o_lo, o_hi;       /* the same as offsets (brk_off) */
+    hrm_real o_lo, o_hi;       /* the current piece's ends where they are
+                                  breakpoints, as offsets (else -inf,
+                                  +inf): samples at them are taken on the
+                                  piece's side */
     hrm_real w_delta;          /* equiangular: the light's foot on the ray */
     int find_jumps;            /* locate jumps (options.find_jumps) */
     int scan;                  /* scan the medium for jumps first */
@@ -1834,11 +1834,13 @@ static HRM_DEVICE hrm_real hrm__in_ray(const hrm__ctx *c, hrm_real s)
 
 static HRM_DEVICE hrm_real hrm__side(const hrm__ctx *c, hrm_real s)
 {
-    hrm_real lo, hi;
-    if (c->s_lo == -HRM__R(HUGE_VAL) && c->s_hi == HRM__R(HUGE_VAL)) return s;
-    lo = c->s_lo == -HRM__R(HUGE_VAL) ? c->s_lo : hrm__inside(c->s_lo, 1);
-    hi = c->s_hi == HRM__R(HUGE_VAL) ? c->s_hi : hrm__inside(c->s_hi, -1);
-    if (lo > hi) s = c->s_lo / 2 + c->s_hi / 2; /* a piece of a few ulps */
+    hrm_real lo, hi, s_lo, s_hi;
+    if (c->o_lo == -HRM__R(HUGE_VAL) && c->o_hi == HRM__R(HUGE_VAL)) return s;
+    s_lo = c->t0 + c->o_lo;
+    s_hi = c->t0 + c->o_hi;
+    lo = c->o_lo == -HRM__R(HUGE_VAL) ? s_lo : hrm__inside(s_lo, 1);
+    hi = c->o_hi == HRM__R(HUGE_VAL) ? s_hi : hrm__inside(s_hi, -1);
+    if (lo > hi) s = s_lo / 2 + s_hi / 2; /* a piece of a few ulps */
     else s = s < lo ? lo : s > hi ? hi : s;
     return hrm__in_ray(c, s);
 }
@@ -7314,8 +7316,8 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, 
     c->T = t1 - t0;
     c->range = hrm__range(c->T);
     c->rng = o->seed;
-    c->s_lo = c->o_lo = -HRM__R(HUGE_VAL);
-    c->s_hi = c->o_hi = HRM__R(HUGE_VAL);
+    c->o_lo = -HRM__R(HUGE_VAL);
+    c->o_hi = HRM__R(HUGE_VAL);
     c->homog = (m->flags & HRM_MEDIUM_HOMOGENEOUS) != 0;
     c->per_length = (m->flags & HRM_EMISSION_PER_LENGTH) != 0;
     c->rte = o->form == HRM_FORM_RTE && mi->rte;
@@ -7650,8 +7652,6 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__solve_broken_in(hrm__ctx *c,
         c->pb = P[k + 1];
         c->o_lo = k == 0 ? -HRM__R(HUGE_VAL) : c->brk_off[k - 1];
         c->o_hi = k + 1 == n ? HRM__R(HUGE_VAL) : c->brk_off[k];
-        c->s_lo = c->t0 + c->o_lo;
-        c->s_hi = c->t0 + c->o_hi;
         if (c->src == HRM__TAU_STREAM && k > 0) hrm__stream_piece(c, c->brk_off[k - 1]);
         c->scale_fixed = 0;
         hrm__fill(c->scale, HRM__NY, 0);
@@ -7694,8 +7694,8 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__solve_broken_in(hrm__ctx *c,
     memcpy(c->err_acc, err, sizeof err);
     c->pa = pa;
     c->pb = pb;
-    c->s_lo = c->o_lo = -HRM__R(HUGE_VAL);
-    c->s_hi = c->o_hi = HRM__R(HUGE_VAL);
+    c->o_lo = -HRM__R(HUGE_VAL);
+    c->o_hi = HRM__R(HUGE_VAL);
 }
 
 /* The tables in a frame of their own without a workspace, which a ray
@@ -7728,6 +7728,16 @@ static HRM_DEVICE void hrm__source_at(hrm__ctx *c, hrm_real p, hrm_real S[HRM__C
     *off = pt.off;
 }
 
+/* Whether a bisection of [a, b] (offsets) has reached t's resolution:
+   its middle m at the abscissa of an end (the ends then adjacent
+   abscissae, or one), where a jump between them is placed at the second
+   (hrm__locate_jump, hrm__locate_sigma_jump). */
+static HRM_DEVICE int hrm__adjacent(const hrm__ctx *c, hrm_real a, hrm_real m, hrm_real b)
+{
+    hrm_real tm = hrm__abscissa(c, m);
+    return tm == hrm__abscissa(c, a) || tm == hrm__abscissa(c, b);
+}
+
 /* Locate the jump inside [pl, pr] (in p) by bisection on the source:
    the half whose ends differ more keeps it, until its ends are adjacent
    abscissae (about 50 evaluations in double on a unit interval). A smooth
@@ -7739,17 +7749,17 @@ static HRM_DEVICE void hrm__source_at(hrm__ctx *c, hrm_real p, hrm_real S[HRM__C
    slowly). */
 static HRM_DEVICE HRM__CALL int hrm__locate_jump(hrm__ctx *c, hrm_real pl, hrm_real pr, hrm_real *tj)
 {
-    hrm_real Sl[HRM__CH], Sr[HRM__CH], Sm[HRM__CH], trl[HRM__CH], trr[HRM__CH], trm[HRM__CH];
+    hrm_real Sl[HRM__CH], Sr[HRM__CH], Sm[HRM__CH], trl[HRM__CH], trm[HRM__CH]; /* Tr at pl, pm */
     hrm_real ol, or_, om, d = 0, big = 0, gap;
     int it, i, smooth = 0, fine = 0;
     hrm__source_at(c, pl, Sl, &ol, trl);
-    hrm__source_at(c, pr, Sr, &or_, trr);
+    hrm__source_at(c, pr, Sr, &or_, trm);
     for (it = 0; it < 64 && c->status == HRM_OK; ++it) {
         hrm_real pm = pl / 2 + pr / 2, dl = 0, dr = 0, J;
         if (!(pm > pl && pm < pr)) break;
         hrm__map(c, pm, &om, &J);
-        if (hrm__abscissa(c, om) == hrm__abscissa(c, ol) || hrm__abscissa(c, om) == hrm__abscissa(c, or_)) {
-            fine = 1; /* down to t's resolution: adjacent abscissae */
+        if (hrm__adjacent(c, ol, om, or_)) {
+            fine = 1;
             break;
         }
         hrm__source_at(c, pm, Sm, &om, trm);
@@ -7768,7 +7778,6 @@ static HRM_DEVICE HRM__CALL int hrm__locate_jump(hrm__ctx *c, hrm_real pl, hrm_r
             pr = pm;
             or_ = om;
             memcpy(Sr, Sm, sizeof Sm);
-            memcpy(trr, trm, sizeof trm);
         } else {
             pl = pm;
             ol = om;
@@ -7853,8 +7862,8 @@ static HRM_DEVICE HRM__CALL int hrm__locate_sigma_jump(hrm__ctx *c, hrm_real a, 
     for (it = 0; it < 80 && c->status == HRM_OK && smooth < 3; ++it) {
         hrm_real m = a / 2 + b / 2, fm, dl, dr;
         if (!(m > a && m < b)) break;
-        if (hrm__abscissa(c, m) == hrm__abscissa(c, a) || hrm__abscissa(c, m) == hrm__abscissa(c, b)) {
-            fine = 1; /* down to t's resolution: adjacent abscissae */
+        if (hrm__adjacent(c, a, m, b)) {
+            fine = 1;
             break;
         }
         if (edge && ((at_a && a == a0) || (at_b && b == b0)) && (b - a) * (fa > fb ? fa : fb) <= etol)
