@@ -215,6 +215,11 @@
      ray)                          valid: no warp (the map is affine)
      D = 0 with the light on the ray
                                    HRM_ERR_SINGULAR, before
+     D = 0 or u's range < sqrt(eps), the foot d off the ray (d < t1 - t0)
+                                   valid: D = d / 8 where eps |t| / d <=
+                                   sqrt(eps); else no warp (t1 = +inf:
+                                   D = 0 BAD_INTERVAL, else distance warp
+                                   and ROUNDOFF)
      user warp: u_of_t not increasing or not finite at t0 or t1
                                    HRM_ERR_BAD_WARP (only u_of_t called)
      user warp: t_of_u, u_of_t NaN or infinite inside the ray; dt_du < 0,
@@ -372,9 +377,9 @@
                          extinction (lowered to what u resolves).
    HRM_WARP_EQUIANGULAR  u = atan((t - delta)/D), a point light D from the
                          ray at its foot delta (Munoz eq. 16; Kulla and
-                         Fajardo 2012): hrm_equiangular_warp. None where
-                         D = 0 (t1 = +INFINITY: BAD_INTERVAL) or u's range
-                         < sqrt(eps) (t1 = +INFINITY: distance, ROUNDOFF).
+                         Fajardo 2012): hrm_equiangular_warp. D = 0 or u's
+                         range < sqrt(eps): D = 1/8 of the light's distance
+                         or none (BAD INPUT).
    HRM_WARP_USER         the host's t_of_u, dt_du (>= 0) and u_of_t.
    t1 = +INFINITY: valid where the warp maps it to a finite u (no callback
    sees infinity). The RTE form turns stiff under a warp (Munoz s.6).
@@ -3046,6 +3051,25 @@ static HRM_DEVICE double hrm__light_res(double delta, double D, double t0, doubl
     return (double)HRM__EPS * span / sqrt(D * D + x * x);
 }
 
+/* The D the equiangular map takes for a light D from the ray's line, its
+   foot delta outside [t0, t1]: on the line (D = 0), or so near it that
+   u's range is below sqrt(eps) of u (float: D under about 1e-3 of the
+   light's distance from the nearer end), the map had been none, and 1/r^2
+   is steep near that end all the same where the light is nearer it than
+   the ray is long (float, a light 1e-6 of the ray before t0: Verner 14
+   rtol off with HRM_OK). There the map of D = an eighth of that distance,
+   whose density is 1/r^2's to within 1.6%, where t resolves r to sqrt(eps)
+   (coarser, the pairs refined under the map to their budget, chasing
+   round-off); D itself elsewhere. */
+static HRM_DEVICE double hrm__line_D(double delta, double D, double t0, double t1)
+{
+    double near = delta < t0 ? t0 - delta : delta > t1 ? delta - t1 : 0, ua, ub, e = (double)HRM__EPS;
+    if (!(near > 0 && near < t1 - t0 && D < near / 8 && hrm__light_res(delta, D, t0, t1) <= sqrt(e))) return D;
+    ua = atan2(t0 - delta, D);
+    ub = atan2(t1 - delta, D);
+    return ub - ua > sqrt(e) * (fabs(ua) + fabs(ub)) ? D : near / 8;
+}
+
 static HRM_DEVICE HRM__CALL hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_warp *w)
 {
     int inf = !HRM__FINITE(c->T);
@@ -3102,8 +3126,9 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__setup_warp(hrm__ctx *c, const hrm_wa
            ray's line 8 ulps past t1, float: Gauss-Kronrod 6 700 rtol off
            with HRM_OK) */
         c->w_res = (hrm_real)hrm__light_res((double)w->delta, (double)D, (double)c->t0, (double)c->t1);
+        D = (hrm_real)hrm__line_D((double)w->delta, (double)D, (double)c->t0, (double)c->t1);
         if (D == 0) {
-            c->warp = HRM_WARP_NONE; /* light on the ray's line, outside: 1/r^2 is smooth */
+            c->warp = HRM_WARP_NONE; /* on the ray's line where t does not resolve r */
             break;
         }
         /* A light far from the whole ray (|t - delta| below eps^(1/4) D):
@@ -3663,7 +3688,8 @@ HRM__DEF HRM_DEVICE hrm_status hrm_light_options(const hrm_light *lights, int nl
             st = HRM_ERR_SINGULAR;
             goto fail;
         }
-        if (eq.D == 0) continue; /* on the ray's line, outside it */
+        eq.D = (hrm_real)hrm__line_D((double)eq.delta, (double)eq.D, (double)t0, (double)t1);
+        if (eq.D == 0) continue; /* on the ray's line, outside it, where t does not resolve r */
         if (l->kind == HRM_LIGHT_SPOT) hrm__spot_peak(w, d, len, a, ca, t0, t1, lit0, lit1, edge, nedge, &eq);
         mass = hrm__mix_mass((double)l->power / (double)eq.D, (double)eq.delta, (double)eq.D, t0, t1);
         k = plan->nmix;
