@@ -3604,9 +3604,10 @@ HRM__DEF HRM_DEVICE hrm_status hrm_light_options(const hrm_light *lights, int nl
                                       hrm_real t0, hrm_real t1, hrm_ray_plan *plan, hrm_options *options)
 {
     hrm_real cand[2 * HRM_MAX_BREAKS];
-    double d[3], len, pi = 3.14159265358979323846;
+    double d[3], len, pi = 3.14159265358979323846, line_res = -1;
     int n = 0, i, j, k;
     hrm_status st = HRM_ERR_BAD_WARP;
+    hrm_warp line;
     if (!origin || !dir || !plan || !options || (nlights > 0 && !lights) || (nspheres > 0 && !spheres)) {
         if (plan) memset(plan, 0, sizeof *plan);
         return HRM_ERR_NULL_ARGUMENT;
@@ -3617,6 +3618,7 @@ HRM__DEF HRM_DEVICE hrm_status hrm_light_options(const hrm_light *lights, int nl
         for (i = 0; options->breaks && i < options->nbreaks && i < HRM_MAX_BREAKS; ++i)
             hrm__plan_add(cand, &n, options->breaks[i], t0, t1);
     memset(plan, 0, sizeof *plan);
+    memset(&line, 0, sizeof line);
     if (!hrm__unit3(dir, d, &len) || !hrm__vec_ok(origin) || !HRM__FINITE(t0) || !(t1 >= t0) || nlights < 0 ||
         nspheres < 0)
         return HRM_ERR_BAD_WARP;
@@ -3689,7 +3691,20 @@ HRM__DEF HRM_DEVICE hrm_status hrm_light_options(const hrm_light *lights, int nl
             goto fail;
         }
         eq.D = (hrm_real)hrm__line_D((double)eq.delta, (double)eq.D, (double)t0, (double)t1);
-        if (eq.D == 0) continue; /* on the ray's line, outside it, where t does not resolve r */
+        if (eq.D == 0) {
+            /* on the ray's line, outside it, where t does not resolve r:
+               no map, but where no other light gives one, the warp of D =
+               0 (none), so that the solve weighs t's resolution there
+               (the nearest such light's) as it does for that warp (float,
+               a light 1e-6 of the ray past t1: Verner 10 rtol off with
+               HRM_OK at rtol 1e-2) */
+            double res = hrm__light_res((double)eq.delta, 0, (double)t0, (double)t1);
+            if (res > line_res) {
+                line_res = res;
+                line = eq;
+            }
+            continue;
+        }
         if (l->kind == HRM_LIGHT_SPOT) hrm__spot_peak(w, d, len, a, ca, t0, t1, lit0, lit1, edge, nedge, &eq);
         mass = hrm__mix_mass((double)l->power / (double)eq.D, (double)eq.delta, (double)eq.D, t0, t1);
         k = plan->nmix;
@@ -3736,7 +3751,9 @@ HRM__DEF HRM_DEVICE hrm_status hrm_light_options(const hrm_light *lights, int nl
     options->nbreaks = plan->nbreaks;
     memset(&options->warp, 0, sizeof options->warp);
     plan->last_u = -1; /* u >= 0: no inversion kept yet */
-    if (plan->nmix == 1) {
+    if (plan->nmix == 0 && line_res >= 0) {
+        options->warp = line;
+    } else if (plan->nmix == 1) {
         options->warp.kind = HRM_WARP_EQUIANGULAR;
         options->warp.delta = (hrm_real)plan->delta[0];
         options->warp.D = (hrm_real)plan->D[0];
