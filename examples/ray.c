@@ -204,7 +204,7 @@ int main(void) {
             opt.rtol = (hrm_real)advice[k].rtol;
             opt.max_evals = advice[k].budget; /* 0: the default, 100000 */
             if (hrm_equiangular_warp(origin, dir, light, &opt.warp) != HRM_OK)
-                opt.warp.kind = HRM_WARP_NONE; /* light on the ray's line */
+                opt.warp.kind = HRM_WARP_NONE; /* a direction or position not finite */
             r.shadow_status = HRM_OK;
             status = hrm_solve(&m, 0, (hrm_real)t_wall, &opt, &res);
             if (status < 0) return 1;
