@@ -1118,6 +1118,16 @@ static void wp_em_li(void *u, hrm_real t, hrm_real out[NCH])
     for (c = 0; c < NCH; ++c) out[c] = (hrm_real)(e[3] / (e[4] * e[4] + x * x));
 }
 
+/* sigma_s of the scene's homogeneous medium through a callback (its
+   constants, as a renderer's density lookup would give them). */
+static void wp_const_ss(void *u, hrm_real t, hrm_real out[NCH])
+{
+    scene *sc = (scene *)u;
+    int c;
+    touch(sc, t);
+    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)sc->sig_s[c];
+}
+
 static void wp_equiangular_edges(void)
 {
     const double sig = 1e-12;
@@ -1222,14 +1232,15 @@ static void wp_equiangular_edges(void)
        1e-6 past t1 = 1, where float's t resolves its distance to 0.12 (no
        map; hrm_light_options had dropped it, and the solve did not weigh
        that resolution: Verner 10, Dormand-Prince 8 rtol off with HRM_OK at
-       rtol 1e-2). Every adaptive method at rtol 1e-2..1e-4: HRM_OK within
-       3 rtol (the silent threshold; L0 as above), or a warning. */
+       rtol 1e-2). Every adaptive method at rtol 1e-2..1e-4, the medium as
+       constants and as a sigma_s callback (v >= 3): HRM_OK within 3 rtol
+       (the silent threshold; L0 as above), or a warning. */
     {
         static const double gaps[] = { 1e-6, 1e-4, 1e-6 };
         hrm_ray_plan plan;
-        int gi, ri, dk;
+        int gi, ri, dk, v;
         for (gi = 0; gi < 3; ++gi)
-            for (dk = 0; dk < 3; ++dk)
+            for (v = 0; v < 6; ++v)
                 for (ri = 0; ri < 3; ++ri)
                     for (mi = 0; mi < N_METHODS_ALL; ++mi) {
                         hrm_method meth = every_method[mi];
@@ -1240,6 +1251,7 @@ static void wp_equiangular_edges(void)
                         hrm_result r;
                         hrm_status st;
                         if (!is_adaptive(meth)) continue;
+                        dk = v % 3;
                         sc.delta = (double)(hrm_real)(gi < 2 ? -gaps[gi] : 1 + gaps[gi]);
                         sc.D = (double)(hrm_real)(dk == 1 ? 1e-12 * gaps[gi] : 0);
                         w = wp_warp(HRM_WARP_EQUIANGULAR, 0, sc.delta, sc.D, NULL);
@@ -1262,6 +1274,10 @@ static void wp_equiangular_edges(void)
                                   sc.delta, (double)o.warp.D);
                         }
                         m = problem_medium(&p);
+                        if (v >= 3) {
+                            m.flags &= ~(unsigned)HRM_MEDIUM_HOMOGENEOUS;
+                            m.sigma_s = wp_const_ss;
+                        }
                         st = hrm_solve(&m, 0, 1, &o, &r);
                         for (c = 0; c < NCH; ++c) {
                             double L0 = sig * sc.I[c] * fabs(1 / -sc.delta - 1 / (1 - sc.delta));
@@ -1269,8 +1285,9 @@ static void wp_equiangular_edges(void)
                             if (!(d <= worst)) worst = d;
                         }
                         CHECK(st > 0 || (st == HRM_OK && worst <= 3 * rtol),
-                              "%s: a light on the line at %g (D %g, %s), rtol %g: status %d, L off by %.3g rtol",
-                              hrm_method_name(meth), sc.delta, sc.D, dk == 2 ? "hrm_light_options" : "the warp",
+                              "%s: a light on the line at %g (D %g, %s, %s), rtol %g: status %d, L off by %.3g "
+                              "rtol", hrm_method_name(meth), sc.delta, sc.D,
+                              dk == 2 ? "hrm_light_options" : "the warp", v >= 3 ? "sigma_s callback" : "constants",
                               rtol, (int)st, worst / rtol);
                     }
     }
