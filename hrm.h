@@ -270,9 +270,9 @@
    (or hrm_solve) for its shadow ray. Randomness (Monte Carlo, jitter) comes
    from options.seed alone: the same inputs give the same answer.
    Stack (tests/stack.c: the worst variant, double, 3 channels, gcc, clang
-   -O2): fixed-step methods 7-11 KiB on constants, 25 at most (the
-   transmittance layer 11: a table of 32 panels); the pairs 14 and 31;
-   Gauss-Kronrod 87, nested Simpson 95; the shadow-ray estimator 9; about 2.2
+   -O2): fixed-step methods 6-9 KiB, 12 with Simpson's fit, 24 with the
+   transmittance layer (11: 32 panels); the pairs 14 and 31; Gauss-Kronrod
+   87, nested Simpson 95; the shadow-ray estimator 9; about 2.2
    times that with 8 channels, half in float, at most (48 + 48 HRM_CHANNELS)
    KiB; twice with a shadow ray solved inside Li. options.workspace
    (hrm_workspace_size bytes, aligned to 16, one a thread) holds the layer (128
@@ -2922,12 +2922,16 @@ static HRM_DEVICE HRM__CALL void hrm__stream_level(hrm__ctx *c, long M)
    there. Beyond x the medium's contribution is below exp(-reach) of the
    largest S / sigma_t there. A homogeneous medium in closed form; a
    transmittance callback by bisection; sigma callbacks by a coarse march
-   of the transmittance layer (medium evaluations, no source call).
+   of the transmittance layer where one is held, else hrm__reach_march
+   (medium evaluations, no source call).
    lowest: the thinnest channel's lowest running mean tau(s)/s over the
    second half of that reach, a sigma_ref that an infinite ray's tail,
    which nobody measured, is least likely to be thinner than (a channel
    thinner than sigma_ref far out makes the warped integrand singular at
    u = 1). */
+static HRM_DEVICE HRM__CALL void hrm__reach_march(hrm__ctx *c, hrm_real end, hrm_real reach, hrm_real *x,
+                                                  hrm_real *tx, hrm_real *lowest);
+
 static HRM_DEVICE HRM__CALL void hrm__tau_reach(hrm__ctx *c, hrm_real reach, hrm_real *x, hrm_real *tx,
                            hrm_real *lowest)
 {
@@ -2978,6 +2982,10 @@ static HRM_DEVICE HRM__CALL void hrm__tau_reach(hrm__ctx *c, hrm_real reach, hrm
 #undef HRM__TR_MOST
         return;
     }
+    if (!c->tau) {
+        hrm__reach_march(c, end, reach, x, tx, lowest);
+        return;
+    }
     {
         hrm__tau *L = c->tau;
         *lowest = -1;
@@ -3013,6 +3021,73 @@ static HRM_DEVICE HRM__CALL void hrm__tau_reach(hrm__ctx *c, hrm_real reach, hrm
         }
         if (*lowest < 0) *lowest = *x > 0 ? *tx / *x : 0;
     }
+}
+
+/* hrm__tau_reach on sigma callbacks where no transmittance layer is held
+   (tau from a fixed-step rule's own nodes, or the RTE form's state): a
+   march of panels, each Boole's rule on its halves checked by Boole's on
+   the whole (the halves' error a 63rd of their difference: Romberg), to
+   1e-3 of its tau or of the running mean's share (a thin panel), halved
+   down to 1e-6 of the distance marched (a jump, whose panel's relative
+   error does not shrink), a halved panel keeping its samples. Where the
+   thinnest channel's tau reaches `reach`, x is found on the broken line
+   through the panel's ends and middle. */
+static HRM_DEVICE HRM__CALL void hrm__reach_march(hrm__ctx *c, hrm_real end, hrm_real reach, hrm_real *x,
+                                                  hrm_real *tx, hrm_real *lowest)
+{
+    hrm_real a = 0, h = HRM__FINITE(c->T) ? c->T : 1, tau[HRM__CH], f[9][HRM__CH];
+    int k, i, j, have = 0; /* f at even j already sampled (a halved panel) */
+    *x = 0;
+    *tx = 0;
+    *lowest = -1;
+    hrm__fill(tau, HRM__CH, 0);
+    hrm__sigma_t_at(c, 0, 0, f[0]);
+    for (k = 0; k < 4 * HRM_TAU_PANELS && c->status == HRM_OK && a < end; ++k) {
+        hrm_real b, tb[HRM__CH], tm[HRM__CH], worst = 0, lo_a, lo_m, lo_b;
+        if (h > end - a) h = end - a;
+        b = a + h;
+        for (j = 1; j <= 8; ++j)
+            if (!have || (j & 1)) hrm__sigma_t_at(c, a + h * (hrm_real)j / 8, 0, f[j]);
+        if (c->status != HRM_OK) return;
+        for (i = 0; i < HRM__CH; ++i) {
+            hrm_real whole = h / 90 * (7 * (f[0][i] + f[8][i]) + 32 * (f[2][i] + f[6][i]) + 12 * f[4][i]);
+            hrm_real l = h / 180 * (7 * (f[0][i] + f[4][i]) + 32 * (f[1][i] + f[3][i]) + 12 * f[2][i]);
+            hrm_real r = h / 180 * (7 * (f[4][i] + f[8][i]) + 32 * (f[5][i] + f[7][i]) + 12 * f[6][i]);
+            hrm_real e = HRM_FABS(l + r - whole) / 63, tol = HRM__R(1e-3) * (l + r > tau[i] * h / b ? l + r : tau[i] * h / b);
+            if (e / tol > worst) worst = e / tol;
+            tm[i] = tau[i] + l;
+            tb[i] = tm[i] + r;
+        }
+        /* rejected: halved, its samples at the even eighths the new
+           panel's at its even eighths (down to t's resolution) */
+        if (worst > 1 && h > (HRM__R(1e-6) > 64 * HRM__EPS ? HRM__R(1e-6) : 64 * HRM__EPS) * b) {
+            h /= 2;
+            for (j = 8; j >= 2; j -= 2) memcpy(f[j], f[j / 2], sizeof f[j]);
+            have = 1;
+            continue;
+        }
+        have = 0;
+        for (i = 0, lo_a = tau[0], lo_m = tm[0], lo_b = tb[0]; i < HRM__CH; ++i) {
+            lo_a = tau[i] < lo_a ? tau[i] : lo_a;
+            lo_m = tm[i] < lo_m ? tm[i] : lo_m;
+            lo_b = tb[i] < lo_b ? tb[i] : lo_b;
+        }
+        *x = b;
+        *tx = lo_b;
+        if (lo_b >= reach) {
+            *x = lo_m >= reach ? a + h / 2 * (lo_m > lo_a ? (reach - lo_a) / (lo_m - lo_a) : 1)
+                               : a + h / 2 + h / 2 * (lo_b > lo_m ? (reach - lo_m) / (lo_b - lo_m) : 1);
+            *tx = reach;
+            if (*lowest < 0 || reach / *x < *lowest) *lowest = reach / *x;
+            return;
+        }
+        if (lo_b >= reach / 2 && (*lowest < 0 || lo_b / b < *lowest)) *lowest = lo_b / b;
+        memcpy(tau, tb, sizeof tau);
+        memcpy(f[0], f[8], sizeof f[0]);
+        a = b;
+        if (worst < HRM__R(1.0) / 128) h *= 2;
+    }
+    if (*lowest < 0) *lowest = *x > 0 ? *tx / *x : 0;
 }
 
 /* The parameter range [pa, pb] of the warp, with its fallbacks. An
@@ -8503,29 +8578,21 @@ typedef struct hrm__job {
     hrm_real t_end;        /* and the ray's end past the cut */
 } hrm__job;
 
-/* The storage a solve needs: the layer where tau comes from it, or where
-   the distance warp's reach is marched on sigma callbacks (not for the
-   shadow-ray estimator, which keeps its own panels); the memo for the
+/* The storage a solve needs: the layer where tau comes from it (not for
+   the shadow-ray estimator, which keeps its own panels; the distance
+   warp's reach marched without it elsewhere, hrm__reach_march); the memo for the
    adaptive methods; the fits' tables where a fit runs; the worst-first
    drivers' storage where they run. Each is held only then, in the
    caller's workspace or in a frame of its own, so that a fixed-step solve
    on constants reserves none of it. */
-static HRM_DEVICE unsigned hrm__needs(const hrm_medium *m, const hrm_options *o, int tr_only, int estimator,
-                           hrm_real t1)
+static HRM_DEVICE unsigned hrm__needs(const hrm_medium *m, const hrm_options *o, int tr_only, int estimator)
 {
     int le, li;
-    int sigma_cb = !(m->flags & HRM_MEDIUM_HOMOGENEOUS) && !m->transmittance;
     hrm__tau_src src;
     unsigned need = 0;
     hrm__sources(m, tr_only, &le, &li);
     src = hrm__tau_source(m, o, le || li);
-    /* (the equiangular warp on an infinite ray may fall back to the
-       distance warp: hrm__setup) */
-    if (!estimator && (src == HRM__TAU_LAYER ||
-                       (sigma_cb && !(tr_only && HRM__FINITE(t1)) &&
-                        (o->warp.kind == HRM_WARP_DISTANCE ||
-                         (o->warp.kind == HRM_WARP_EQUIANGULAR && !HRM__FINITE(t1))))))
-        need |= HRM__NEED_LAYER;
+    if (!estimator && src == HRM__TAU_LAYER) need |= HRM__NEED_LAYER;
     if (hrm__is_adaptive(o->method)) need |= HRM__NEED_MEMO;
     if (o->exponential && hrm__tau_closed(src)) need |= HRM__NEED_EFIT;
     need |= HRM__CTX_NEED | HRM__NEED_PIECES;
@@ -8608,8 +8675,9 @@ static HRM_DEVICE HRM__NOINLINE hrm_status hrm__cut_ray(hrm__job *j, hrm__ctx *c
     int nbrk = c->nbrk, njumps = c->njumps, k;
     memcpy(brk, c->brk_off, sizeof brk);
     memcpy(jumps, c->jumps, sizeof jumps);
-    /* the distance warp keeps its sigma_ref (its reach, marched on the
-       layer, would clear what the scan taught it) */
+    /* the distance warp keeps its sigma_ref (its reach, marched again,
+       would cost its lookups again, and clear what the scan taught the
+       layer) */
     if (c->warp == HRM_WARP_DISTANCE) j->o.warp.sigma_ref = c->w_sigma;
     st = hrm__job_setup(j, c, t1, 1);
     if (st != HRM_OK) return st;
@@ -8784,7 +8852,7 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__run(const hrm_medium *m, hrm_real t0
     j.jumps = jumps;
     j.t_end = t_end;
     j.tr_end = tr_end;
-    j.need = hrm__needs(m, &j.o, tr_only, j.estimator, t1);
+    j.need = hrm__needs(m, &j.o, tr_only, j.estimator);
     j.ws = (unsigned char *)j.o.workspace;
     if (!j.ws) j.need &= ~(HRM__NEED_FINISH | HRM__NEED_CTX | HRM__NEED_PIECES);
     return hrm__stage(&j);

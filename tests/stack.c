@@ -647,6 +647,14 @@ static void st_table(void)
         CHECK(w->at >= 0 && w->bytes > 1024 && w->bytes <= STACK_LIMIT, "%s: %ld bytes within (1 KiB, %ld]", name,
               w->bytes, STACK_LIMIT);
         if (w->bytes > largest) largest = w->bytes;
+        /* The first-order rules within 8 KiB without a workspace (3
+           channels, double, gcc -O2): their tau comes from their own nodes
+           or the stream, and the distance warp's reach on sigma callbacks
+           is marched without the transmittance layer (hrm__reach_march;
+           with the layer's frame: 18 944). Measured 7 936 (rounded). */
+        if (NCH == 3 && sizeof(hrm_real) == 8 &&
+            (r == HRM_RECTANGLE || r == HRM_MONTE_CARLO || r == HRM_ANALYTIC_MARCH))
+            CHECK(w->bytes <= 8192, "%s: %ld bytes of stack without a workspace, within 8192", name, w->bytes);
     }
     NOTE("the largest: %ld bytes (%ld rounded up), STACK_LIMIT %ld", largest, st_round(largest), STACK_LIMIT);
 
