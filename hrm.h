@@ -3026,12 +3026,15 @@ static HRM_DEVICE HRM__CALL void hrm__tau_reach(hrm__ctx *c, hrm_real reach, hrm
 /* hrm__tau_reach on sigma callbacks where no transmittance layer is held
    (tau from a fixed-step rule's own nodes, or the RTE form's state): a
    march of panels, each Boole's rule on its halves checked by Boole's on
-   the whole (the halves' error a 63rd of their difference: Romberg), to
-   1e-3 of its tau or of the running mean's share (a thin panel), halved
-   down to 1e-6 of the distance marched (a jump, whose panel's relative
-   error does not shrink), a halved panel keeping its samples. Where the
-   thinnest channel's tau reaches `reach`, x is found on the broken line
-   through the panel's ends and middle. */
+   the whole, to 1e-3 of its tau or of the running mean's share (a thin
+   panel), halved down to 1e-4 of the distance marched (a jump, whose
+   panel's relative error does not shrink), a halved panel keeping its
+   samples. The halves' error is taken as a 15th of the difference, not
+   Romberg's 63rd, which holds for smooth sigma only: across a jump it
+   accepted panels whose tau was 1.7 times the truth, and the ray past a
+   reach found that early is not sampled. Where the thinnest channel's tau
+   reaches `reach`, x is found on the broken line through the panel's
+   ends and middle. */
 static HRM_DEVICE HRM__CALL void hrm__reach_march(hrm__ctx *c, hrm_real end, hrm_real reach, hrm_real *x,
                                                   hrm_real *tx, hrm_real *lowest)
 {
@@ -3053,14 +3056,14 @@ static HRM_DEVICE HRM__CALL void hrm__reach_march(hrm__ctx *c, hrm_real end, hrm
             hrm_real whole = h / 90 * (7 * (f[0][i] + f[8][i]) + 32 * (f[2][i] + f[6][i]) + 12 * f[4][i]);
             hrm_real l = h / 180 * (7 * (f[0][i] + f[4][i]) + 32 * (f[1][i] + f[3][i]) + 12 * f[2][i]);
             hrm_real r = h / 180 * (7 * (f[4][i] + f[8][i]) + 32 * (f[5][i] + f[7][i]) + 12 * f[6][i]);
-            hrm_real e = HRM_FABS(l + r - whole) / 63, tol = HRM__R(1e-3) * (l + r > tau[i] * h / b ? l + r : tau[i] * h / b);
-            if (e / tol > worst) worst = e / tol;
+            hrm_real e = HRM_FABS(l + r - whole) / 15, tol = HRM__R(1e-3) * (l + r > tau[i] * h / b ? l + r : tau[i] * h / b);
+            if (e > 0 && !(e <= worst * tol)) worst = e / tol; /* (tol 0: e 0, or a reject) */
             tm[i] = tau[i] + l;
             tb[i] = tm[i] + r;
         }
         /* rejected: halved, its samples at the even eighths the new
            panel's at its even eighths (down to t's resolution) */
-        if (worst > 1 && h > (HRM__R(1e-6) > 64 * HRM__EPS ? HRM__R(1e-6) : 64 * HRM__EPS) * b) {
+        if (worst > 1 && h > HRM__R(1e-4) * b) {
             h /= 2;
             for (j = 8; j >= 2; j -= 2) memcpy(f[j], f[j / 2], sizeof f[j]);
             have = 1;
