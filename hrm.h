@@ -270,9 +270,9 @@
    (or hrm_solve) for its shadow ray. Randomness (Monte Carlo, jitter) comes
    from options.seed alone: the same inputs give the same answer.
    Stack (tests/stack.c: the worst variant, double, 3 channels, gcc, clang
-   -O2): fixed-step methods 6-9 KiB, 12 with Simpson's fit, 24 with the
-   transmittance layer (11: 32 panels); the pairs 14 and 31; Gauss-Kronrod
-   87, nested Simpson 95; the shadow-ray estimator 9; about 2.2
+   -O2): fixed-step methods 6-10 KiB, 14-17 with the transmittance layer
+   (6 in their frame: 8 panels); the pairs 14 and 31; Gauss-Kronrod 87,
+   nested Simpson 95; the shadow-ray estimator 9; about 2.2
    times that with 8 channels, half in float, at most (48 + 48 HRM_CHANNELS)
    KiB; twice with a shadow ray solved inside Li. options.workspace
    (hrm_workspace_size bytes, aligned to 16, one a thread) holds the layer (128
@@ -1455,14 +1455,16 @@ typedef struct hrm__pt {
 } hrm__pt;
 
 /* An exponentially fitted rule on nodes y[0..n) of [-1, 1] (ascending):
-   A[k][j] is the coefficient of the Legendre polynomial P_k in the
-   Lagrange polynomial of node j. */
+   A[k n + j] is the coefficient of the Legendre polynomial P_k in the
+   Lagrange polynomial of node j (n x n: Simpson's 9 values, Gauss-Kronrod's
+   225 and its Gauss rule's 64, in storage sized by the method: hrm__stage). */
 #define HRM__EFIT_MAX 15
 typedef struct hrm__efit {
     int n;
     hrm_real y[HRM__EFIT_MAX];
-    hrm_real A[HRM__EFIT_MAX][HRM__EFIT_MAX];
+    hrm_real *A;
 } hrm__efit;
+#define HRM__EFIT_BYTES ((2 * sizeof(hrm__efit) + 15) / 16 * 16 + 2 * HRM__EFIT_MAX * HRM__EFIT_MAX * sizeof(hrm_real))
 
 /* Where tau at the nodes comes from: one choice per solve (hrm__setup),
    of which the flags homog, closed, decoupled, coupled and tau_from_tr
@@ -1932,6 +1934,11 @@ HRM__STATIC_ASSERT(tau_panels_16_to_65536, HRM_TAU_PANELS >= 16 && HRM_TAU_PANEL
 #define HRM__TAU_STACK (HRM_TAU_PANELS < 32 ? HRM_TAU_PANELS : 32)
 #define HRM__CHEB 16       /* the highest degree of a panel */
 #define HRM__TCACHE 8      /* panels whose coefficients are kept */
+/* A fixed-step rule asks for tau at nodes in increasing t: its frame's
+   layer keeps 8 panels and the coefficients of 2 (the panel asked for
+   and the one marched after it), 4.9 KiB less at 3 channels. */
+#define HRM__TAU_STACK_FIXED 8
+#define HRM__TCACHE_FIXED 2
 #define HRM__TMEM 32       /* samples of rejected panels remembered */
 #define HRM__TCHECK 16     /* checkpoints of the march */
 #define HRM__SCAN 32       /* the medium scan's intervals (hrm__scan_medium) */
@@ -1965,7 +1972,8 @@ typedef struct hrm__tcheck {
 
 typedef struct hrm__tau {
     hrm__tpanel *tab;       /* panel i at tab[i % ntab] (HRM_TAU_PANELS in a
-                               workspace, HRM__TAU_STACK in a frame) */
+                               workspace, HRM__TAU_STACK or
+                               HRM__TAU_STACK_FIXED in a frame) */
     long ntab;
     long count;             /* panels accepted so far */
     long base;              /* the first panel marched since the last start */
@@ -1978,7 +1986,9 @@ typedef struct hrm__tau {
     hrm_real next_h;        /* the next panel's trial length */
     hrm_real sig_b[HRM__CH];/* sigma_t at the last panel's end */
     hrm_real sig0[HRM__CH]; /* sigma_t at t0 */
-    hrm__tcoef cache[HRM__TCACHE];
+    hrm__tcoef *cache;      /* ncache entries (HRM__TCACHE, or
+                               HRM__TCACHE_FIXED in a fixed-step rule's frame) */
+    int ncache;
     int last;               /* the cache entry used last */
     int next;               /* the entry to fill next (round robin) */
     /* Samples a panel over which must reproduce them, ascending in x:
@@ -2007,7 +2017,8 @@ typedef struct hrm__tau {
     hrm_real scan_a[HRM__SCAN_Q][HRM__CH];
     char scan_have[8 * HRM__SCAN_Q + 1], scan_ha[HRM__SCAN_Q];
 } hrm__tau;
-#define HRM__TAU_HEAD ((sizeof(hrm__tau) + 15) / 16 * 16) /* its table after it */
+#define HRM__TAU_HEAD ((sizeof(hrm__tau) + 15) / 16 * 16) /* its cache and table after it */
+#define HRM__TAU_CACHE_BYTES ((sizeof(hrm__tcoef) * HRM__TCACHE + 15) / 16 * 16)
 
 /* sigma_t at offset off from t0: one medium evaluation. */
 static HRM_DEVICE void hrm__sigma_t_at(hrm__ctx *c, hrm_real off, int side, hrm_real st[HRM__CH])
@@ -2397,7 +2408,7 @@ static HRM_DEVICE HRM__CALL hrm_real hrm__tau_fit(hrm__ctx *c, const hrm__tau *L
 static HRM_DEVICE void hrm__forget(hrm__tau *L)
 {
     int k;
-    for (k = 0; k < HRM__TCACHE; ++k) L->cache[k].id = -1;
+    for (k = 0; k < L->ncache; ++k) L->cache[k].id = -1;
     L->last = L->next = 0;
 }
 
@@ -2405,7 +2416,7 @@ static HRM_DEVICE void hrm__forget(hrm__tau *L)
 static HRM_DEVICE hrm__tcoef *hrm__tcache_slot(hrm__tau *L)
 {
     L->last = L->next;
-    L->next = (L->next + 1) % HRM__TCACHE;
+    L->next = (L->next + 1) % L->ncache;
     return &L->cache[L->last];
 }
 
@@ -2793,8 +2804,8 @@ static HRM_DEVICE HRM__CALL void hrm__tau_at(hrm__ctx *c, hrm__tau *L, hrm_real 
     co = &L->cache[L->last];
     if (co->id != lo) {
         int k;
-        for (k = 0; k < HRM__TCACHE && L->cache[k].id != lo; ++k) {}
-        if (k < HRM__TCACHE) {
+        for (k = 0; k < L->ncache && L->cache[k].id != lo; ++k) {}
+        if (k < L->ncache) {
             L->last = k;
             co = &L->cache[k];
         } else {
@@ -4316,11 +4327,11 @@ static HRM_DEVICE HRM__CALL void hrm__legendre_inverse(const hrm_real *y, int n,
    frame). */
 static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__efit_init(hrm__efit *F, const hrm_real *y, int n)
 {
-    hrm_real V[HRM__EFIT_MAX][HRM__EFIT_MAX];
+    hrm_real V[HRM__EFIT_MAX * HRM__EFIT_MAX];
     int j;
     F->n = n;
     for (j = 0; j < n; ++j) F->y[j] = y[j];
-    hrm__legendre_inverse(y, n, HRM__EFIT_MAX, &V[0][0], &F->A[0][0]);
+    hrm__legendre_inverse(y, n, n, V, F->A);
 }
 
 /* s_k = exp(-b) i_k(b), k = 0..n-1, b >= 0 (i_k the modified spherical
@@ -4509,7 +4520,7 @@ static HRM_DEVICE HRM__CALL void hrm__efit_panel(const hrm__ctx *c, const hrm__e
             hrm__msb(b, n, s);
             for (j = 0; j < n; ++j) {
                 w[j] = 0;
-                for (k = 0; k < n; ++k) w[j] += F->A[k][j] * (k % 2 ? -2 : 2) * s[k];
+                for (k = 0; k < n; ++k) w[j] += F->A[k * n + j] * (k % 2 ? -2 : 2) * s[k];
             }
             b_prev = b;
         }
@@ -7212,9 +7223,10 @@ HRM__DEF HRM_DEVICE hrm_options hrm_default_options(hrm_method method)
    the caller's workspace, which holds them in this order). */
 static HRM_DEVICE size_t hrm__need_bytes(int k)
 {
-    static const size_t bytes[HRM__NEEDS] = {HRM__TAU_HEAD + sizeof(hrm__tpanel) * HRM_TAU_PANELS,
+    static const size_t bytes[HRM__NEEDS] = {HRM__TAU_HEAD + HRM__TAU_CACHE_BYTES +
+                                                 sizeof(hrm__tpanel) * HRM_TAU_PANELS,
                                              sizeof(hrm__memo_tab),
-                                             sizeof(hrm__efit) * 2, sizeof(hrm__ns_store),
+                                             HRM__EFIT_BYTES, sizeof(hrm__ns_store),
                                              sizeof(hrm__gk_store), sizeof(hrm__ns_half) * (HRM_MAX_DEPTH + 1),
                                              sizeof(hrm__ctx), sizeof(hrm__piece_tab)};
     return (bytes[k] + 15) / 16 * 16;
@@ -8613,8 +8625,25 @@ static HRM_DEVICE HRM__NOINLINE hrm_status hrm__with_layer(hrm__job *j)
 {
     hrm__tau layer;
     hrm__tpanel tab[HRM__TAU_STACK];
+    hrm__tcoef cache[HRM__TCACHE];
     layer.tab = tab;
     layer.ntab = HRM__TAU_STACK;
+    layer.cache = cache;
+    layer.ncache = HRM__TCACHE;
+    j->at[0] = &layer;
+    j->need &= ~HRM__NEED_LAYER;
+    return hrm__stage(j);
+}
+
+static HRM_DEVICE HRM__NOINLINE hrm_status hrm__with_layer_fixed(hrm__job *j)
+{
+    hrm__tau layer;
+    hrm__tpanel tab[HRM__TAU_STACK_FIXED];
+    hrm__tcoef cache[HRM__TCACHE_FIXED];
+    layer.tab = tab;
+    layer.ntab = HRM__TAU_STACK_FIXED;
+    layer.cache = cache;
+    layer.ncache = HRM__TCACHE_FIXED;
     j->at[0] = &layer;
     j->need &= ~HRM__NEED_LAYER;
     return hrm__stage(j);
@@ -8631,6 +8660,21 @@ static HRM_DEVICE HRM__NOINLINE hrm_status hrm__with_memo(hrm__job *j)
 static HRM_DEVICE HRM__NOINLINE hrm_status hrm__with_efit(hrm__job *j)
 {
     hrm__efit ef[2];
+    hrm_real A[2][HRM__EFIT_MAX * HRM__EFIT_MAX];
+    ef[0].A = A[0];
+    ef[1].A = A[1];
+    j->at[2] = ef;
+    j->need &= ~HRM__NEED_EFIT;
+    return hrm__stage(j);
+}
+
+/* Simpson's fit: one on 3 nodes */
+static HRM_DEVICE HRM__NOINLINE hrm_status hrm__with_efit3(hrm__job *j)
+{
+    hrm__efit ef[2];
+    hrm_real A[9];
+    ef[0].A = A;
+    ef[1].A = NULL;
     j->at[2] = ef;
     j->need &= ~HRM__NEED_EFIT;
     return hrm__stage(j);
@@ -8798,18 +8842,27 @@ static HRM_DEVICE hrm_status hrm__stage(hrm__job *j)
             if (j->need & (1u << k)) {
                 j->at[k] = j->ws;
                 if (k == 0) {
-                    /* the layer's table after it, whole */
+                    /* the layer's cache and table after it, whole */
                     hrm__tau *L = (hrm__tau *)j->ws;
-                    L->tab = (hrm__tpanel *)(j->ws + HRM__TAU_HEAD);
+                    L->cache = (hrm__tcoef *)(j->ws + HRM__TAU_HEAD);
+                    L->ncache = HRM__TCACHE;
+                    L->tab = (hrm__tpanel *)(j->ws + HRM__TAU_HEAD + HRM__TAU_CACHE_BYTES);
                     L->ntab = HRM_TAU_PANELS;
+                } else if (k == 2) {
+                    /* the fits' matrices after them */
+                    hrm__efit *ef = (hrm__efit *)j->ws;
+                    ef[0].A = (hrm_real *)(j->ws + (2 * sizeof(hrm__efit) + 15) / 16 * 16);
+                    ef[1].A = ef[0].A + HRM__EFIT_MAX * HRM__EFIT_MAX;
                 }
                 j->ws += hrm__need_bytes(k);
             }
         j->need = 0;
     }
-    if (j->need & HRM__NEED_LAYER) return hrm__with_layer(j);
+    if (j->need & HRM__NEED_LAYER)
+        return hrm__is_adaptive(j->o.method) ? hrm__with_layer(j) : hrm__with_layer_fixed(j);
     if (j->need & HRM__NEED_MEMO) return hrm__with_memo(j);
-    if (j->need & HRM__NEED_EFIT) return hrm__with_efit(j);
+    if (j->need & HRM__NEED_EFIT)
+        return hrm__methods[j->o.method].driver == HRM__DRV_SIMPSON ? hrm__with_efit3(j) : hrm__with_efit(j);
     if (j->need & HRM__NEED_NS) return hrm__with_ns(j);
     if (j->need & HRM__NEED_GK) return hrm__with_gk(j);
     /* (HRM__NEED_FINISH and HRM__NEED_PIECES without a workspace:
