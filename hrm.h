@@ -8621,33 +8621,24 @@ static HRM_DEVICE unsigned hrm__needs(const hrm_medium *m, const hrm_options *o,
 static HRM_DEVICE hrm_status hrm__stage(hrm__job *j);
 
 /* Without a workspace, each need in a frame of its own. */
-static HRM_DEVICE HRM__NOINLINE hrm_status hrm__with_layer(hrm__job *j)
-{
-    hrm__tau layer;
-    hrm__tpanel tab[HRM__TAU_STACK];
-    hrm__tcoef cache[HRM__TCACHE];
-    layer.tab = tab;
-    layer.ntab = HRM__TAU_STACK;
-    layer.cache = cache;
-    layer.ncache = HRM__TCACHE;
-    j->at[0] = &layer;
-    j->need &= ~HRM__NEED_LAYER;
-    return hrm__stage(j);
-}
-
-static HRM_DEVICE HRM__NOINLINE hrm_status hrm__with_layer_fixed(hrm__job *j)
-{
-    hrm__tau layer;
-    hrm__tpanel tab[HRM__TAU_STACK_FIXED];
-    hrm__tcoef cache[HRM__TCACHE_FIXED];
-    layer.tab = tab;
-    layer.ntab = HRM__TAU_STACK_FIXED;
-    layer.cache = cache;
-    layer.ncache = HRM__TCACHE_FIXED;
-    j->at[0] = &layer;
-    j->need &= ~HRM__NEED_LAYER;
-    return hrm__stage(j);
-}
+/* The layer with npanel panels and ncoef panels' coefficients: an
+   adaptive method's, a fixed-step rule's. */
+#define HRM__LAYER_FRAME(name, npanel, ncoef)                                 \
+    static HRM_DEVICE HRM__NOINLINE hrm_status name(hrm__job *j)              \
+    {                                                                         \
+        hrm__tau layer;                                                       \
+        hrm__tpanel tab[npanel];                                              \
+        hrm__tcoef cache[ncoef];                                              \
+        layer.tab = tab;                                                      \
+        layer.ntab = npanel;                                                  \
+        layer.cache = cache;                                                  \
+        layer.ncache = ncoef;                                                 \
+        j->at[0] = &layer;                                                    \
+        j->need &= ~HRM__NEED_LAYER;                                          \
+        return hrm__stage(j);                                                 \
+    }
+HRM__LAYER_FRAME(hrm__with_layer, HRM__TAU_STACK, HRM__TCACHE)
+HRM__LAYER_FRAME(hrm__with_layer_fixed, HRM__TAU_STACK_FIXED, HRM__TCACHE_FIXED)
 
 static HRM_DEVICE HRM__NOINLINE hrm_status hrm__with_memo(hrm__job *j)
 {
