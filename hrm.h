@@ -271,8 +271,8 @@
    from options.seed alone: the same inputs give the same answer.
    Stack (tests/stack.c: the worst variant, double, 3 channels, gcc, clang
    -O2): fixed-step methods 6-10 KiB, 14-17 with the transmittance layer
-   (6 in their frame: 8 panels); the pairs 14 and 31; Gauss-Kronrod 87,
-   nested Simpson 95; the shadow-ray estimator 9; about 2.2
+   (6 in their frame: 8 panels); the pairs 26 (15 on constants);
+   Gauss-Kronrod 85, nested Simpson 95; the shadow-ray estimator 9; about 2.2
    times that with 8 channels, half in float, at most (48 + 48 HRM_CHANNELS)
    KiB; twice with a shadow ray solved inside Li. options.workspace
    (hrm_workspace_size bytes, aligned to 16, one a thread) holds the layer (128
@@ -1463,6 +1463,7 @@ typedef struct hrm__efit {
     int n;
     hrm_real y[HRM__EFIT_MAX];
     hrm_real *A;
+    int cap;                /* A's entries, n n at least */
 } hrm__efit;
 #define HRM__EFIT_BYTES ((2 * sizeof(hrm__efit) + 15) / 16 * 16 + 2 * HRM__EFIT_MAX * HRM__EFIT_MAX * sizeof(hrm_real))
 
@@ -1936,7 +1937,10 @@ HRM__STATIC_ASSERT(tau_panels_16_to_65536, HRM_TAU_PANELS >= 16 && HRM_TAU_PANEL
 #define HRM__TCACHE 8      /* panels whose coefficients are kept */
 /* A fixed-step rule asks for tau at nodes in increasing t: its frame's
    layer keeps 8 panels and the coefficients of 2 (the panel asked for
-   and the one marched after it), 4.9 KiB less at 3 channels. */
+   and the one marched after it), 4.9 KiB less at 3 channels. A pair
+   steps forward too, but retries a rejected step and starts again where
+   the medium check found a miss: 8 panels, 8 panels' coefficients (with
+   4, make bench's hifreq rows took 10% more lookups). */
 #define HRM__TAU_STACK_FIXED 8
 #define HRM__TCACHE_FIXED 2
 #define HRM__TMEM 32       /* samples of rejected panels remembered */
@@ -4329,6 +4333,7 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__efit_init(hrm__efit *F, cons
 {
     hrm_real V[HRM__EFIT_MAX * HRM__EFIT_MAX];
     int j;
+    HRM_ASSERT(n * n <= F->cap);
     F->n = n;
     for (j = 0; j < n; ++j) F->y[j] = y[j];
     hrm__legendre_inverse(y, n, n, V, F->A);
@@ -8638,6 +8643,7 @@ static HRM_DEVICE hrm_status hrm__stage(hrm__job *j);
         return hrm__stage(j);                                                 \
     }
 HRM__LAYER_FRAME(hrm__with_layer, HRM__TAU_STACK, HRM__TCACHE)
+HRM__LAYER_FRAME(hrm__with_layer_pair, HRM__TAU_STACK_FIXED, HRM__TCACHE)
 HRM__LAYER_FRAME(hrm__with_layer_fixed, HRM__TAU_STACK_FIXED, HRM__TCACHE_FIXED)
 
 static HRM_DEVICE HRM__NOINLINE hrm_status hrm__with_memo(hrm__job *j)
@@ -8648,28 +8654,25 @@ static HRM_DEVICE HRM__NOINLINE hrm_status hrm__with_memo(hrm__job *j)
     return hrm__stage(j);
 }
 
-static HRM_DEVICE HRM__NOINLINE hrm_status hrm__with_efit(hrm__job *j)
-{
-    hrm__efit ef[2];
-    hrm_real A[2][HRM__EFIT_MAX * HRM__EFIT_MAX];
-    ef[0].A = A[0];
-    ef[1].A = A[1];
-    j->at[2] = ef;
-    j->need &= ~HRM__NEED_EFIT;
-    return hrm__stage(j);
-}
-
-/* Simpson's fit: one on 3 nodes */
-static HRM_DEVICE HRM__NOINLINE hrm_status hrm__with_efit3(hrm__job *j)
-{
-    hrm__efit ef[2];
-    hrm_real A[9];
-    ef[0].A = A;
-    ef[1].A = NULL;
-    j->at[2] = ef;
-    j->need &= ~HRM__NEED_EFIT;
-    return hrm__stage(j);
-}
+/* The fits on n0 and n1 nodes at most (hrm__efit_setup): Simpson's on 3;
+   a pair's on its distinct nodes; Gauss-Kronrod's on its Kronrod nodes
+   and its Gauss nodes (at most 8). */
+#define HRM__EFIT_FRAME(name, n0, n1)                                         \
+    static HRM_DEVICE HRM__NOINLINE hrm_status name(hrm__job *j)              \
+    {                                                                         \
+        hrm__efit ef[2];                                                      \
+        hrm_real A0[(n0) * (n0)], A1[(n1) * (n1)];                            \
+        ef[0].A = A0;                                                         \
+        ef[0].cap = (n0) * (n0);                                              \
+        ef[1].A = A1;                                                         \
+        ef[1].cap = (n1) * (n1);                                              \
+        j->at[2] = ef;                                                        \
+        j->need &= ~HRM__NEED_EFIT;                                           \
+        return hrm__stage(j);                                                 \
+    }
+HRM__EFIT_FRAME(hrm__with_efit3, 3, 1)
+HRM__EFIT_FRAME(hrm__with_efit_pair, HRM__MAX_STAGES, 1)
+HRM__EFIT_FRAME(hrm__with_efit_gk, HRM__EFIT_MAX, 8)
 
 static HRM_DEVICE HRM__NOINLINE hrm_status hrm__with_ns(hrm__job *j)
 {
@@ -8844,16 +8847,21 @@ static HRM_DEVICE hrm_status hrm__stage(hrm__job *j)
                     hrm__efit *ef = (hrm__efit *)j->ws;
                     ef[0].A = (hrm_real *)(j->ws + (2 * sizeof(hrm__efit) + 15) / 16 * 16);
                     ef[1].A = ef[0].A + HRM__EFIT_MAX * HRM__EFIT_MAX;
+                    ef[0].cap = ef[1].cap = HRM__EFIT_MAX * HRM__EFIT_MAX;
                 }
                 j->ws += hrm__need_bytes(k);
             }
         j->need = 0;
     }
     if (j->need & HRM__NEED_LAYER)
-        return hrm__is_adaptive(j->o.method) ? hrm__with_layer(j) : hrm__with_layer_fixed(j);
+        return hrm__methods[j->o.method].family == HRM__ADAPTIVE_QUAD ? hrm__with_layer(j)
+             : hrm__methods[j->o.method].family == HRM__PAIR         ? hrm__with_layer_pair(j)
+                                                                      : hrm__with_layer_fixed(j);
     if (j->need & HRM__NEED_MEMO) return hrm__with_memo(j);
     if (j->need & HRM__NEED_EFIT)
-        return hrm__methods[j->o.method].driver == HRM__DRV_SIMPSON ? hrm__with_efit3(j) : hrm__with_efit(j);
+        return hrm__methods[j->o.method].driver == HRM__DRV_SIMPSON ? hrm__with_efit3(j)
+             : hrm__methods[j->o.method].family == HRM__PAIR ? hrm__with_efit_pair(j)
+                                                              : hrm__with_efit_gk(j);
     if (j->need & HRM__NEED_NS) return hrm__with_ns(j);
     if (j->need & HRM__NEED_GK) return hrm__with_gk(j);
     /* (HRM__NEED_FINISH and HRM__NEED_PIECES without a workspace:
