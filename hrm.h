@@ -125,7 +125,8 @@
                        nested Simpson's intervals and initial panels.
    HRM_GK_INTERVALS 128 (8-4096), HRM_GK_INITIAL 32: global Gauss-Kronrod's.
    HRM_MAX_DEPTH 60 (8-200): the left-to-right finish's depth.
-   HRM_TAU_PANELS 128 (16-65536): the layer's panel table (32 on the stack).
+   HRM_TAU_PANELS 128 (16-65536): the layer's panel table (on the stack 32,
+                       8 for the fixed-step rules and pairs).
    HRM_SHADOW_PANELS 48 (8-4096): the shadow-ray estimator's a segment.
    A value outside its range fails to compile (a static assertion).
    HRM_ASSERT(x)       internal invariants only; assert() by default.
@@ -269,15 +270,14 @@
    are thread-safe and re-entrant: an Li callback may call hrm_transmittance
    (or hrm_solve) for its shadow ray. Randomness (Monte Carlo, jitter) comes
    from options.seed alone: the same inputs give the same answer.
-   Stack (tests/stack.c: the worst variant, double, 3 channels, gcc, clang
-   -O2): fixed-step methods 6-10 KiB, 14-17 with the transmittance layer
-   (6 in their frame: 8 panels); the pairs 26 (15 on constants);
-   Gauss-Kronrod 85, nested Simpson 95; the shadow-ray estimator 9; about 2.2
-   times that with 8 channels, half in float, at most (48 + 48 HRM_CHANNELS)
-   KiB; twice with a shadow ray solved inside Li. options.workspace
-   (hrm_workspace_size bytes, aligned to 16, one a thread) holds the layer (128
-   panels), adaptive storage and context instead, same answers: fixed-step
-   methods 7.5 KiB of stack, every method 21, 38 with a nested shadow ray.
+   Stack (tests/stack.c, worst variant, double, 3 channels, gcc/clang -O2):
+   fixed-step methods 6-10 KiB, 14-17 with the transmittance layer; the
+   pairs 26 (15 on constants); Gauss-Kronrod 85, nested Simpson 95; the
+   shadow-ray estimator 9; 2.2 times that with 8 channels, half in float, at
+   most (48 + 48 HRM_CHANNELS) KiB; twice with a shadow ray in Li. With
+   options.workspace (hrm_workspace_size bytes, aligned to 16, one a thread)
+   holding the layer (128 panels), adaptive storage and context, same
+   answers: fixed-step methods 7.5 KiB, every method 21, 38 nested.
    GPU kernels: under nvcc or hipcc every function is __host__ __device__
    (HRM_DEVICE; define it to override) and the tables exist on both sides.
    Build the medium in the kernel (callbacks: device functions), give each
