@@ -5575,6 +5575,15 @@ static HRM_DEVICE HRM__CALL hrm_real hrm__ratio(hrm__ctx *c, int control, hrm_re
     if (c->warp == HRM_WARP_NONE && HRM_FABS(c->t0) > pos && HRM_FABS(c->t0) > c->pb - c->pa)
         pos = HRM_FABS(c->t0);
     noise = 8 * HRM__EPS * (pos / HRM_FABS(p1 - p0) + 1);
+    /* Near a light t places the nodes, and so samples its profile, to
+       w_res of its distance; a pair's kink test, a high difference of its
+       stages, carries that rounding several times over: below 4 w_res no
+       estimate tells the rule's error from it. Where w_res passes 2 rtol
+       (hrm__finish warns HRM_WARN_ROUNDOFF), steps within it are taken,
+       not refined (double, t0 = 2, a light 1e-11 before it, D 1e-13, rtol
+       1e-5: Dormand-Prince 63 271 evaluations chasing it, Verner 17 425;
+       below 2 rtol the floor warned on answers within rtol, float) */
+    if (c->w_res > 2 * c->rtol && 4 * c->w_res > noise) noise = 4 * c->w_res;
     if (control != HRM__JUMP) c->noise_only = 0;
     for (n = 0; n < HRM__NY; ++n) {
         hrm_real atol = n >= HRM__CH ? c->atol : 0, tol, e = HRM_FABS(err[n]);

@@ -1388,6 +1388,44 @@ static void wp_equiangular_edges(void)
         }
         CHECK(worst <= 16 * 4 * rtol, "%s: light at 3.3, D %g: relative error %.3g", hrm_method_name(meth), D, worst);
     }
+    /* A light 1e-11 (float: 1e-5) before t0 = 2 on a ray 1e-6 (1e-2)
+       long, D a hundredth of that: t resolves its distance to 4.4e-5
+       (2.4e-2), past 2 rtol, and the steps within that resolution are
+       taken, not refined: every adaptive method warns (HRM_WARN_ROUNDOFF,
+       or another warning first) within 1 000 evaluations (double, before:
+       Dormand-Prince 63 271, Fehlberg 77 829, Cash-Karp 77 073, Verner
+       17 425, chasing the rounding), its answer within 16 times that
+       resolution of the exact for the light where hrm sees it. */
+    for (mi = 0; mi < N_METHODS_ALL; ++mi) {
+        hrm_method meth = every_method[mi];
+        int fl = real_is_float();
+        double back = fl ? 1e-5 : 1e-11, rtol = fl ? 1e-4 : 1e-5, worst = 0, res = 2 * real_eps() / back;
+        hrm_real t0 = 2, t1 = (hrm_real)(2 + (fl ? 1e-2 : 1e-6)), delta = (hrm_real)(2 - back);
+        hrm_real D = (hrm_real)(back / 100);
+        hrm_warp w;
+        hrm_options o;
+        hrm_medium m;
+        hrm_result r;
+        hrm_status st;
+        if (!is_adaptive(meth)) continue;
+        sc.delta = (double)delta;
+        sc.D = (double)D;
+        w = wp_warp(HRM_WARP_EQUIANGULAR, 0, (double)delta, (double)D, NULL);
+        o = wp_options(meth, 8, &w);
+        o.rtol = (hrm_real)rtol;
+        m = problem_medium(&p);
+        st = hrm_solve(&m, t0, t1, &o, &r);
+        CHECK(st > 0 && r.stats.evals <= 1000,
+              "%s: light %g before t0 = 2 (t's resolution there %.2g of it): a warning within 1 000 evaluations "
+              "(status %d, %ld evaluations)", hrm_method_name(meth), back, res, (int)st, r.stats.evals);
+        for (c = 0; c < NCH; ++c) {
+            double L0 = wp_exact_point0(sig, sc.I[c], (double)delta, (double)D, (double)t0, (double)t1);
+            double d = fabs((double)r.L[c] - L0) / L0;
+            if (!(d <= worst)) worst = d;
+        }
+        CHECK(worst <= 16 * res, "%s: light %g before t0 = 2: relative error %.3g (t's resolution %.2g)",
+              hrm_method_name(meth), back, worst, res);
+    }
     /* Emission under a light's warp: sigma_t 2.97 (sigma_a 2.2) with Le, a
        light 0.0067 from the ray at 6.85 on [6.136, 9.473]. The emission
        past the light's foot lies where dt/du grows 6 000-fold within nested
