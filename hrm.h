@@ -3053,7 +3053,7 @@ static HRM_DEVICE HRM__CALL void hrm__tau_reach(hrm__ctx *c, hrm_real reach, hrm
 static HRM_DEVICE HRM__CALL void hrm__reach_march(hrm__ctx *c, hrm_real end, hrm_real reach, hrm_real *x,
                                                   hrm_real *tx, hrm_real *lowest)
 {
-    hrm_real a = 0, h = HRM__FINITE(c->T) ? c->T : 1, tau[HRM__CH], f[9][HRM__CH];
+    hrm_real a = 0, h = HRM__FINITE(c->T) ? c->T : 1, h0 = h, tau[HRM__CH], f[9][HRM__CH];
     int k, i, j, have = 0; /* f at even j already sampled (a halved panel) */
     *x = 0;
     *tx = 0;
@@ -3077,8 +3077,12 @@ static HRM_DEVICE HRM__CALL void hrm__reach_march(hrm__ctx *c, hrm_real end, hrm
             tb[i] = tm[i] + r;
         }
         /* rejected: halved, its samples at the even eighths the new
-           panel's at its even eighths (down to t's resolution) */
-        if (worst > 1 && h > HRM__R(1e-4) * b) {
+           panel's at its even eighths, down to 1e-4 of the distance
+           marched or of the first panel (a jump at t0 itself, sigma 0
+           there and not after it, stays in every panel [0, h]: halved
+           without end, the march gave up and the warp with it, an
+           infinite ray's solve HRM_ERR_BAD_INTERVAL) */
+        if (worst > 1 && h > HRM__R(1e-4) * (b > h0 ? b : h0)) {
             h /= 2;
             for (j = 8; j >= 2; j -= 2) memcpy(f[j], f[j / 2], sizeof f[j]);
             have = 1;
