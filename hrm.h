@@ -3049,7 +3049,7 @@ static HRM_DEVICE HRM__CALL void hrm__tau_reach(hrm__ctx *c, hrm_real reach, hrm
    accepted panels whose tau was 1.7 times the truth, and the ray past a
    reach found that early is not sampled. Where the thinnest channel's tau
    reaches `reach`, x is found on the broken line through the panel's
-   ends and middle. */
+   ends and middle (a panel taken at the floor: its end). */
 static HRM_DEVICE HRM__CALL void hrm__reach_march(hrm__ctx *c, hrm_real end, hrm_real reach, hrm_real *x,
                                                   hrm_real *tx, hrm_real *lowest)
 {
@@ -3097,8 +3097,11 @@ static HRM_DEVICE HRM__CALL void hrm__reach_march(hrm__ctx *c, hrm_real end, hrm
         *x = b;
         *tx = lo_b;
         if (lo_b >= reach) {
-            *x = lo_m >= reach ? a + h / 2 * (lo_m > lo_a ? (reach - lo_a) / (lo_m - lo_a) : 1)
-                               : a + h / 2 + h / 2 * (lo_b > lo_m ? (reach - lo_m) / (lo_b - lo_m) : 1);
+            /* (a panel taken at the floor, across a jump: its end, so that
+               the reach is never placed before the truth) */
+            if (worst <= 1)
+                *x = lo_m >= reach ? a + h / 2 * (lo_m > lo_a ? (reach - lo_a) / (lo_m - lo_a) : 1)
+                                   : a + h / 2 + h / 2 * (lo_b > lo_m ? (reach - lo_m) / (lo_b - lo_m) : 1);
             *tx = reach;
             if (*lowest < 0 || reach / *x < *lowest) *lowest = reach / *x;
             return;
