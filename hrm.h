@@ -1465,7 +1465,8 @@ typedef struct hrm__efit {
     hrm_real *A;
     int cap;                /* A's entries, n n at least */
 } hrm__efit;
-#define HRM__EFIT_BYTES ((2 * sizeof(hrm__efit) + 15) / 16 * 16 + 2 * HRM__EFIT_MAX * HRM__EFIT_MAX * sizeof(hrm_real))
+#define HRM__EFIT_HEAD ((2 * sizeof(hrm__efit) + 15) / 16 * 16) /* in a workspace: the two fits, their matrices after them */
+#define HRM__EFIT_BYTES (HRM__EFIT_HEAD + 2 * HRM__EFIT_MAX * HRM__EFIT_MAX * sizeof(hrm_real))
 
 /* Where tau at the nodes comes from: one choice per solve (hrm__setup),
    of which the flags homog, closed, decoupled, coupled and tau_from_tr
@@ -8642,8 +8643,8 @@ static HRM_DEVICE unsigned hrm__needs(const hrm_medium *m, const hrm_options *o,
 static HRM_DEVICE hrm_status hrm__stage(hrm__job *j);
 
 /* Without a workspace, each need in a frame of its own. */
-/* The layer with npanel panels and ncoef panels' coefficients: an
-   adaptive method's, a fixed-step rule's. */
+/* The layer with npanel panels and ncoef panels' coefficients: a
+   worst-first method's, a pair's, a fixed-step rule's. */
 #define HRM__LAYER_FRAME(name, npanel, ncoef)                                 \
     static HRM_DEVICE HRM__NOINLINE hrm_status name(hrm__job *j)              \
     {                                                                         \
@@ -8861,7 +8862,7 @@ static HRM_DEVICE hrm_status hrm__stage(hrm__job *j)
                 } else if (k == 2) {
                     /* the fits' matrices after them */
                     hrm__efit *ef = (hrm__efit *)j->ws;
-                    ef[0].A = (hrm_real *)(j->ws + (2 * sizeof(hrm__efit) + 15) / 16 * 16);
+                    ef[0].A = (hrm_real *)(j->ws + HRM__EFIT_HEAD);
                     ef[1].A = ef[0].A + HRM__EFIT_MAX * HRM__EFIT_MAX;
                     ef[0].cap = ef[1].cap = HRM__EFIT_MAX * HRM__EFIT_MAX;
                 }
