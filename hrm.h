@@ -271,13 +271,13 @@
    (or hrm_solve) for its shadow ray. Randomness (Monte Carlo, jitter) comes
    from options.seed alone: the same inputs give the same answer.
    Stack (tests/stack.c, worst variant, double, 3 channels, gcc/clang -O2):
-   fixed-step methods 6-10 KiB, 14-17 with the transmittance layer; the
-   pairs 26 (15 on constants); Gauss-Kronrod 85, nested Simpson 95; the
-   shadow-ray estimator 9; 2.2 times that with 8 channels, half in float, at
-   most (48 + 48 HRM_CHANNELS) KiB; twice with a shadow ray in Li. With
-   options.workspace (hrm_workspace_size bytes, aligned to 16, one a thread)
-   holding the layer (128 panels), adaptive storage and context, same
-   answers: fixed-step methods 7.5 KiB, every method 21, 38 nested.
+   fixed-step methods 5.3-8.5 KiB, 13-14.3 with the transmittance layer;
+   pairs 22-24 (13-15 on constants); Gauss-Kronrod 82-85, nested Simpson
+   92-95; the shadow-ray estimator 12; 2.2 times that with 8 channels, half
+   in float, at most (48 + 48 HRM_CHANNELS) KiB; twice with a shadow ray in
+   Li. options.workspace (hrm_workspace_size bytes, aligned to 16, one a
+   thread) holds the layer, adaptive storage, estimator panels, context:
+   same answers, fixed-step methods 5.8 KiB, every method 19, 36 nested.
    GPU kernels: under nvcc or hipcc every function is __host__ __device__
    (HRM_DEVICE; define it to override) and the tables exist on both sides.
    Build the medium in the kernel (callbacks: device functions), give each
@@ -7219,6 +7219,15 @@ HRM__DEF HRM_DEVICE hrm_options hrm_default_options(hrm_method method)
 }
 
 /* Resolve zeros to defaults; validate. */
+/* A panel of the shadow-ray estimator (hrm__shadow_march). */
+typedef struct hrm__panel {
+    hrm_real a, h;
+    hrm_real f[5][HRM__CH]; /* sigma_t at a + h (0, 1/4, 1/2, 3/4, 1) */
+    hrm_real e[HRM__CH];    /* S2 - S1, at least the fourth difference
+                               its samples predict (hrm__fourth_pred) */
+    hrm_real worst;         /* the largest |e| (NaN: infinite) */
+} hrm__panel;
+
 /* The storage a solve may need, one bit each (hrm__needs, hrm__stage). */
 #define HRM__NEED_LAYER 1u /* the transmittance layer (18 KiB at 3 channels) */
 #define HRM__NEED_MEMO 2u  /* the adaptive methods' remembered abscissae */
@@ -7234,7 +7243,10 @@ HRM__DEF HRM_DEVICE hrm_options hrm_default_options(hrm_method method)
 #define HRM__NEED_PIECES 128u /* the tables of the pieces between
                                 breakpoints: a workspace's only (without
                                 one, hrm__solve_broken's own frame) */
-#define HRM__NEEDS 8
+#define HRM__NEED_SHADOW 256u /* the shadow-ray estimator's panels: a
+                                workspace's only (without one, its own
+                                frame, hrm__shadow_march) */
+#define HRM__NEEDS 9
 #ifdef __CUDA_ARCH__
 #define HRM__CTX_NEED 0u
 #else
@@ -7250,7 +7262,8 @@ static HRM_DEVICE size_t hrm__need_bytes(int k)
                                              sizeof(hrm__memo_tab),
                                              HRM__EFIT_BYTES, sizeof(hrm__ns_store),
                                              sizeof(hrm__gk_store), sizeof(hrm__ns_half) * (HRM_MAX_DEPTH + 1),
-                                             sizeof(hrm__ctx), sizeof(hrm__piece_tab)};
+                                             sizeof(hrm__ctx), sizeof(hrm__piece_tab),
+                                             sizeof(hrm__panel) * HRM_SHADOW_PANELS};
     return (bytes[k] + 15) / 16 * 16;
 }
 
@@ -7265,14 +7278,17 @@ static HRM_DEVICE unsigned hrm__may_need(const hrm_options *o)
            (d == HRM__DRV_GK ? HRM__NEED_GK : 0u);
 }
 
-/* What hrm_workspace_size says for resolved options o. */
+/* What hrm_workspace_size says for resolved options o: with nested
+   Simpson (what HRM_METHOD_DEFAULT resolves to), the larger of that and
+   what hrm_transmittance's estimator takes (the context, the pieces'
+   tables and its panels, in that order). */
 static HRM_DEVICE size_t hrm__ws_bytes(const hrm_options *o)
 {
-    size_t n = 0;
+    size_t n = 0, est = hrm__need_bytes(6) + hrm__need_bytes(7) + hrm__need_bytes(8);
     int k;
     for (k = 0; k < HRM__NEEDS; ++k)
         if (hrm__may_need(o) & (1u << k)) n += hrm__need_bytes(k);
-    return n;
+    return o->method == HRM_NESTED_SIMPSON && est > n ? est : n;
 }
 
 /* Nested Simpson's and Gauss-Kronrod's first panels or intervals on a
@@ -7476,7 +7492,7 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, 
     c->homog = (m->flags & HRM_MEDIUM_HOMOGENEOUS) != 0;
     c->per_length = (m->flags & HRM_EMISSION_PER_LENGTH) != 0;
     c->rte = o->form == HRM_FORM_RTE && mi->rte;
-    c->use_memo = hrm__is_adaptive(o->method);
+    c->use_memo = hrm__is_adaptive(o->method) && memo;
     c->tr_at_nodes = mi->driver != HRM__DRV_MARCH;
     c->memo = memo ? memo->e : NULL;
     c->memo_s = memo ? memo->s : NULL;
@@ -8433,13 +8449,6 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__finish(hrm__ctx *c, const hrm_option
    are not split; where none can be, or past max_evals medium evaluations,
    the segment is taken as it is, with HRM_WARN_H_MIN or
    HRM_WARN_MAX_EVALS. */
-typedef struct hrm__panel {
-    hrm_real a, h;
-    hrm_real f[5][HRM__CH]; /* sigma_t at a + h (0, 1/4, 1/2, 3/4, 1) */
-    hrm_real e[HRM__CH];    /* S2 - S1, at least the fourth difference
-                               its samples predict (hrm__fourth_pred) */
-    hrm_real worst;         /* the largest |e| (NaN: infinite) */
-} hrm__panel;
 
 /* A panel's S2 (Simpson on its halves), channel ch. */
 static HRM_DEVICE hrm_real hrm__panel_s2(const hrm__panel *p, int ch)
@@ -8490,9 +8499,8 @@ static HRM_DEVICE hrm_real hrm__shadow_take(const hrm__panel *p, int np, hrm_rea
     return est;
 }
 
-static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__shadow_march(hrm__ctx *c, const hrm_options *o, hrm_real tau[HRM__CH])
+static HRM_DEVICE HRM__CALL void hrm__shadow_run(hrm__ctx *c, const hrm_options *o, hrm_real tau[HRM__CH], hrm__panel *p)
 {
-    hrm__panel p[HRM_SHADOW_PANELS];
     hrm_real T = c->T, hmin, cap = -HRM_LOG(HRM__TINY), feature = c->m->feature;
     hrm_real taumin = 0, loose = 1, tau_cut = o->cutoff > 0 ? -HRM_LOG(o->cutoff) : HRM__R(HUGE_VAL);
     hrm_real a = 0, len = o->cutoff > 0 ? T / 4 : T;
@@ -8595,6 +8603,13 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__shadow_march(hrm__ctx *c, co
     }
 }
 
+/* The estimator with its panels in a frame of its own (no workspace). */
+static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__shadow_march(hrm__ctx *c, const hrm_options *o, hrm_real tau[HRM__CH])
+{
+    hrm__panel p[HRM_SHADOW_PANELS];
+    hrm__shadow_run(c, o, tau, p);
+}
+
 /* One call's arguments, carried through the frames that hold the storage
    it needs (hrm__stage). */
 typedef struct hrm__job {
@@ -8618,7 +8633,8 @@ typedef struct hrm__job {
 /* The storage a solve needs: the layer where tau comes from it (not for
    the shadow-ray estimator, which keeps its own panels; the distance
    warp's reach marched without it elsewhere, hrm__reach_march); the memo for the
-   adaptive methods; the fits' tables where a fit runs; the worst-first
+   adaptive methods (not for the estimator, whose samples never repeat and
+   never go through hrm__eval); the fits' tables where a fit runs; the worst-first
    drivers' storage where they run. Each is held only then, in the
    caller's workspace or in a frame of its own, so that a fixed-step solve
    on constants reserves none of it. */
@@ -8630,9 +8646,9 @@ static HRM_DEVICE unsigned hrm__needs(const hrm_medium *m, const hrm_options *o,
     hrm__sources(m, tr_only, &le, &li);
     src = hrm__tau_source(m, o, le || li);
     if (!estimator && src == HRM__TAU_LAYER) need |= HRM__NEED_LAYER;
-    if (hrm__is_adaptive(o->method)) need |= HRM__NEED_MEMO;
+    if (hrm__is_adaptive(o->method) && !estimator) need |= HRM__NEED_MEMO;
     if (o->exponential && hrm__tau_closed(src)) need |= HRM__NEED_EFIT;
-    need |= HRM__CTX_NEED | HRM__NEED_PIECES;
+    need |= HRM__CTX_NEED | HRM__NEED_PIECES | (estimator ? HRM__NEED_SHADOW : 0u);
     /* the drivers run where there is a source or tau comes from their
        nodes (not for Tr alone from the layer or a closed form) */
     if (!estimator && (le || li || !hrm__tau_closed(src)))
@@ -8789,7 +8805,8 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE hrm_status hrm__solve_job(hrm__job *j,
     c->stats.t_cut = t1;
     if (j->estimator) {
         /* the shadow-ray estimator */
-        hrm__shadow_march(c, o, y);
+        if (j->at[8]) hrm__shadow_run(c, o, y, (hrm__panel *)j->at[8]);
+        else hrm__shadow_march(c, o, y);
         *j->stats = c->stats;
         if (c->status != HRM_OK) return c->status;
         for (k = 0; k < HRM__CH; ++k) j->Tr[k] = HRM_EXP(-y[k]);

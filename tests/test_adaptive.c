@@ -1247,6 +1247,58 @@ static void ad_workspace(void)
               (unsigned long)need);
         CHECK(past == 0, "nothing written past the workspace's size (%lu bytes)", (unsigned long)past);
     }
+    {
+        /* hrm_transmittance without a method (the shadow-ray estimator):
+           its panels, context and pieces' tables in a workspace of
+           hrm_workspace_size's bytes for those options, the same Tr and
+           stats as on the stack, nothing written past the size; a smooth
+           ray and a hard one (tr_tol 1e-9: its panels fill), without and
+           with breakpoints and a cut-off */
+        static const hrm_real brk[2] = {(hrm_real)1.5, (hrm_real)4};
+        int hv, b, cut, same = 0, n = 0, past = 0, used = 1;
+        for (hv = 0; hv < 2; ++hv)
+            for (b = 0; b < 2; ++b)
+                for (cut = 0; cut < 2; ++cut) {
+                    hrm_medium m;
+                    hrm_options o;
+                    hrm_real T1[NCH], T2[NCH];
+                    hrm_stats s1, s2;
+                    hrm_status st1, st2;
+                    size_t k, u = 0;
+                    int c, eq;
+                    memset(&m, 0, sizeof m);
+                    memset(&o, 0, sizeof o);
+                    m.sigma = hv ? ad_ws_kink : ad_ws_sig;
+                    o.tr_tol = (hrm_real)(hv ? 1e-9 : 0);
+                    o.breaks = b ? brk : NULL;
+                    o.nbreaks = b ? 2 : 0;
+                    o.cutoff = (hrm_real)(cut ? 0.2 : 0);
+                    st1 = hrm_transmittance(&m, 0, 6, &o, T1, &s1);
+                    need = hrm_workspace_size(&o);
+                    o.workspace = ws;
+                    o.workspace_size = need;
+                    memset(ws, 0xA5, need + 256);
+                    st2 = hrm_transmittance(&m, 0, 6, &o, T2, &s2);
+                    eq = st1 >= 0 && st1 == st2 && s1.evals == s2.evals && s1.medium_evals == s2.medium_evals &&
+                         s1.steps == s2.steps && s1.rejected == s2.rejected && s1.t_cut == s2.t_cut;
+                    for (c = 0; c < NCH; ++c) eq &= T1[c] == T2[c];
+                    CHECK(eq, "estimator, %s, %d breaks, cut-off %d: the workspace's Tr and stats the stack's "
+                          "(status %d/%d, Tr %.17g/%.17g, lookups %ld/%ld)", hv ? "hard" : "smooth", 2 * b, cut,
+                          st1, st2, (double)T1[0], (double)T2[0], s1.medium_evals, s2.medium_evals);
+                    same += eq;
+                    ++n;
+                    for (k = 0; k < need; ++k) u += ws[k] != 0xA5;
+                    for (k = need; k < need + 256; ++k) past += ws[k] != 0xA5;
+                    /* the panels there: on the hard ray they fill, 48 of
+                       them (HRM_SHADOW_PANELS, as the suite builds it),
+                       5 samples each (the context and the pieces' tables,
+                       all that the workspace held before, are 2.6 KiB in
+                       double) */
+                    if (hv) used &= u >= 5 * 48 * NCH * sizeof(hrm_real);
+                }
+        CHECK(same == n && used && past == 0, "estimator: %d of %d answers the stack's, its panels in the workspace "
+              "(%d), %d bytes past it", same, n, used, past);
+    }
     free(mem);
 }
 
