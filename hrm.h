@@ -270,14 +270,14 @@
    are thread-safe and re-entrant: an Li callback may call hrm_transmittance
    (or hrm_solve) for its shadow ray. Randomness (Monte Carlo, jitter) comes
    from options.seed alone: the same inputs give the same answer.
-   Stack (tests/stack.c, worst variant, double, 3 channels, gcc/clang -O2):
-   fixed-step methods 5.3-8.5 KiB, 13-14.3 with the transmittance layer;
-   pairs 22-24 (13-15 on constants); Gauss-Kronrod 82-85, nested Simpson
-   92-95; the shadow-ray estimator 12; 2.2 times that with 8 channels, half
-   in float, at most (48 + 48 HRM_CHANNELS) KiB; twice with a shadow ray in
-   Li. options.workspace (hrm_workspace_size bytes, aligned to 16, one a
-   thread) holds the layer, adaptive storage, estimator panels, context:
-   same answers, fixed-step methods 5.8 KiB, every method 19, 36 nested.
+   Stack (tests/stack.c, worst case, double, 3 channels, gcc/clang -O2):
+   fixed-step methods 5.3-8.5 KiB, 10.2-11.5 with the transmittance layer
+   (12.3-13.5 with find_jumps 1); pairs 22-24; Gauss-Kronrod 82-85, nested
+   Simpson 92-95; the shadow-ray estimator 12; 2.2 times that with 8
+   channels, half in float, at most 48 (1 + HRM_CHANNELS) KiB; twice with a
+   shadow ray in Li. options.workspace (hrm_workspace_size bytes, aligned to
+   16, one a thread) holds the layer, adaptive storage, estimator panels and
+   context: same answers, fixed-step 5.8 KiB, every method 19, 36 nested.
    GPU kernels: under nvcc or hipcc every function is __host__ __device__
    (HRM_DEVICE; define it to override) and the tables exist on both sides.
    Build the medium in the kernel (callbacks: device functions), give each
@@ -1938,7 +1938,9 @@ HRM__STATIC_ASSERT(tau_panels_16_to_65536, HRM_TAU_PANELS >= 16 && HRM_TAU_PANEL
 #define HRM__TCACHE 8      /* panels whose coefficients are kept */
 /* A fixed-step rule asks for tau at nodes in increasing t: its frame's
    layer keeps 8 panels and the coefficients of 2 (the panel asked for
-   and the one marched after it), 4.9 KiB less at 3 channels. A pair
+   and the one marched after it), 4 checkpoints and, unless it scans the
+   medium (options.find_jumps 1), no scan storage: 7.5 KiB less at 3
+   channels than an adaptive method's. A pair
    steps forward too, but retries a rejected step and starts again where
    the medium check found a miss: 8 panels, 8 panels' coefficients (with
    4, make bench's hifreq rows took 10% more lookups). */
@@ -1946,6 +1948,7 @@ HRM__STATIC_ASSERT(tau_panels_16_to_65536, HRM_TAU_PANELS >= 16 && HRM_TAU_PANEL
 #define HRM__TCACHE_FIXED 2
 #define HRM__TMEM 32       /* samples of rejected panels remembered */
 #define HRM__TCHECK 16     /* checkpoints of the march */
+#define HRM__TCHECK_FIXED 4 /* in a fixed-step rule's frame */
 #define HRM__SCAN 32       /* the medium scan's intervals (hrm__scan_medium) */
 #define HRM__SCAN_Q 8      /* its panels at most (hrm__scan_layout) */
 /* The widest gap between a panel's degree-8 points, over its width
@@ -1975,6 +1978,19 @@ typedef struct hrm__tcheck {
     hrm_real tau[HRM__CH], sig[HRM__CH]; /* tau and sigma_t at a */
 } hrm__tcheck;
 
+/* The medium scan's panels (hrm__scan_layout: hrm__tau.scan_q of them,
+   ends b) and its samples at their degree-8 points (hrm__scan_at), where
+   it took them (have; at a breakpoint the left side, and the right side
+   at a panel's start in a, ha): the panels that the march tries first
+   (hrm__tau_scan_panel). Held by the layers of the methods that scan
+   (adaptive ones, and the fixed-step rules with options.find_jumps 1). */
+typedef struct hrm__tscan {
+    hrm_real b[HRM__SCAN_Q + 1];
+    hrm_real s[8 * HRM__SCAN_Q + 1][HRM__CH];
+    hrm_real a[HRM__SCAN_Q][HRM__CH];
+    char have[8 * HRM__SCAN_Q + 1], ha[HRM__SCAN_Q];
+} hrm__tscan;
+
 typedef struct hrm__tau {
     hrm__tpanel *tab;       /* panel i at tab[i % ntab] (HRM_TAU_PANELS in a
                                workspace, HRM__TAU_STACK or
@@ -1983,8 +1999,9 @@ typedef struct hrm__tau {
     long count;             /* panels accepted so far */
     long base;              /* the first panel marched since the last start */
     hrm_real base_a, base_tau[HRM__CH]; /* where that march started */
-    hrm__tcheck cp[HRM__TCHECK]; /* ascending in id */
-    int ncp;
+    hrm__tcheck *cp;        /* ascending in id, cpcap at most (HRM__TCHECK,
+                               fewer in a fixed-step rule's frame) */
+    int ncp, cpcap;
     long cp_every;          /* a checkpoint every cp_every panels */
     hrm_real end;           /* the farthest offset that may be asked for */
     hrm_real tol;
@@ -2011,18 +2028,14 @@ typedef struct hrm__tau {
                                none): a panel weighs its error by Tr
                                relative to the foot's too (at most 1) */
     hrm_real tau_foot[HRM__CH]; /* tau at the start of the panel holding it */
-    /* The medium scan's panels (hrm__scan_layout: scan_q of them, ends
-       scan_b) and its samples at their degree-8 points (hrm__scan_at),
-       where it took them (scan_have; at a breakpoint the left side, and
-       the right side at a panel's start in scan_a, scan_ha): the panels
-       that the march tries first (hrm__tau_scan_panel). */
+    /* The medium scan's panels kept (scan_q of them, 0 without scan
+       storage): the panels that the march tries first. */
     int scan_q;
-    hrm_real scan_b[HRM__SCAN_Q + 1];
-    hrm_real scan_s[8 * HRM__SCAN_Q + 1][HRM__CH];
-    hrm_real scan_a[HRM__SCAN_Q][HRM__CH];
-    char scan_have[8 * HRM__SCAN_Q + 1], scan_ha[HRM__SCAN_Q];
+    hrm__tscan *scan;
 } hrm__tau;
-#define HRM__TAU_HEAD ((sizeof(hrm__tau) + 15) / 16 * 16) /* its cache and table after it */
+/* its scan storage and checkpoints after it, then its cache and table */
+#define HRM__TAU_HEAD                                                             \
+    ((sizeof(hrm__tau) + sizeof(hrm__tscan) + sizeof(hrm__tcheck) * HRM__TCHECK + 15) / 16 * 16)
 #define HRM__TAU_CACHE_BYTES ((sizeof(hrm__tcoef) * HRM__TCACHE + 15) / 16 * 16)
 
 /* sigma_t at offset off from t0: one medium evaluation. */
@@ -2469,9 +2482,9 @@ static HRM_DEVICE void hrm__tau_init(hrm__tau *L, hrm_real end, hrm_real tol)
 static HRM_DEVICE void hrm__tau_cut(hrm__tau *L, hrm_real end)
 {
     int q = 0;
-    while (q < L->scan_q && L->scan_b[q + 1] <= end * (1 + 4 * HRM__EPS)) ++q;
+    while (q < L->scan_q && L->scan->b[q + 1] <= end * (1 + 4 * HRM__EPS)) ++q;
     L->scan_q = q;
-    if (q && L->scan_b[q] > end) L->scan_b[q] = end; /* (rounding) */
+    if (q && L->scan->b[q] > end) L->scan->b[q] = end; /* (rounding) */
     while (L->nmem > 0 && L->mem_x[L->nmem - 1] >= end) L->nmem--;
     L->end = end;
     hrm__tau_rebuild(L);
@@ -2539,10 +2552,10 @@ static HRM_DEVICE void hrm__tau_remember(hrm__tau *L, hrm_real a, hrm_real b, in
 static HRM_DEVICE void hrm__tau_checkpoint(hrm__tau *L, long id, hrm_real a)
 {
     hrm__tcheck *q;
-    if (L->ncp == HRM__TCHECK) {
+    if (L->ncp == L->cpcap) {
         int k;
-        for (k = 0; k < HRM__TCHECK / 2; ++k) L->cp[k] = L->cp[2 * k + 1];
-        L->ncp = HRM__TCHECK / 2;
+        for (k = 0; k < L->cpcap / 2; ++k) L->cp[k] = L->cp[2 * k + 1];
+        L->ncp = L->cpcap / 2;
         L->cp_every *= 2;
     }
     q = &L->cp[L->ncp++];
@@ -2581,14 +2594,14 @@ static HRM_DEVICE int hrm__tau_scan_panel(const hrm__ctx *c, const hrm__tau *L, 
 {
     int q = 0, j, k;
     hrm_real b;
-    while (q < L->scan_q && L->scan_b[q] != a) ++q;
+    while (q < L->scan_q && L->scan->b[q] != a) ++q;
     if (q == L->scan_q) return -1;
-    b = L->scan_b[q + 1];
+    b = L->scan->b[q + 1];
     if (b > L->end) return -1;
     /* its start: at a breakpoint the right side's sample */
-    if (a > 0 && hrm__is_break(c, a) ? !L->scan_ha[q] : !L->scan_have[8 * q]) return -1;
+    if (a > 0 && hrm__is_break(c, a) ? !L->scan->ha[q] : !L->scan->have[8 * q]) return -1;
     for (j = 1; j <= 8; ++j)
-        if (!L->scan_have[8 * q + j]) return -1;
+        if (!L->scan->have[8 * q + j]) return -1;
     for (k = 0; k < c->nbrk; ++k)
         if (c->brk_off[k] > a && c->brk_off[k] < b) return -1;
     return q;
@@ -2599,10 +2612,10 @@ static HRM_DEVICE int hrm__tau_scan_panel(const hrm__ctx *c, const hrm__tau *L, 
 static HRM_DEVICE void hrm__tau_scan_take(const hrm__ctx *c, const hrm__tau *L, int q,
                                hrm_real f[HRM__CH][HRM__CHEB + 1])
 {
-    int i, j, right = L->scan_b[q] > 0 && hrm__is_break(c, L->scan_b[q]);
+    int i, j, right = L->scan->b[q] > 0 && hrm__is_break(c, L->scan->b[q]);
     for (i = 0; i < HRM__CH; ++i) {
-        f[i][0] = right ? L->scan_a[q][i] : L->scan_s[8 * q][i];
-        for (j = 1; j <= 8; ++j) f[i][2 * j] = L->scan_s[8 * q + j][i];
+        f[i][0] = right ? L->scan->a[q][i] : L->scan->s[8 * q][i];
+        for (j = 1; j <= 8; ++j) f[i][2 * j] = L->scan->s[8 * q + j][i];
     }
 }
 
@@ -2621,7 +2634,7 @@ static HRM_DEVICE HRM__CALL void hrm__tau_march(hrm__ctx *c, hrm__tau *L, hrm__t
     if (id == 0) {
         hrm_real big = 0;
         hrm__fill(tau_a, HRM__CH, 0);
-        if (L->scan_q && L->scan_have[0]) memcpy(L->sig_b, L->scan_s[0], sizeof L->sig_b);
+        if (L->scan_q && L->scan->have[0]) memcpy(L->sig_b, L->scan->s[0], sizeof L->sig_b);
         else hrm__sigma_t_at(c, 0, 0, L->sig_b);
         memcpy(L->sig0, L->sig_b, sizeof L->sig0);
         for (i = 0; i < HRM__CH; ++i) big = L->sig_b[i] > big ? L->sig_b[i] : big;
@@ -2656,7 +2669,7 @@ static HRM_DEVICE HRM__CALL void hrm__tau_march(hrm__ctx *c, hrm__tau *L, hrm__t
     /* past a breakpoint sigma_t may jump: its value on this side (the
        scan's, where it starts a panel of the scan) */
     if (id > 0 && hrm__is_break(c, a)) {
-        if (q >= 0) memcpy(L->sig_b, L->scan_a[q], sizeof L->sig_b);
+        if (q >= 0) memcpy(L->sig_b, L->scan->a[q], sizeof L->sig_b);
         else hrm__sigma_t_at(c, a, 1, L->sig_b);
     }
     /* res: what t resolves near a. A trial below it is fitted at its own
@@ -2673,7 +2686,7 @@ static HRM_DEVICE HRM__CALL void hrm__tau_march(hrm__ctx *c, hrm__tau *L, hrm__t
         int small = h < res && !failed && q < 0, floor = !small && h <= res && q < 0; /* floor: the last try */
         n = 8;
         if (q >= 0) {
-            b = L->scan_b[q + 1];
+            b = L->scan->b[q + 1];
             hrm__tau_scan_take(c, L, q, f);
             worst = hrm__tau_fit(c, L, a, b, n, 1, tau_a, f, co, dtau);
         } else {
@@ -2734,7 +2747,7 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE hrm__tcoef *hrm__tau_refit(hrm__ctx *c
     hrm_real f[HRM__CH][HRM__CHEB + 1], dtau[HRM__CH], v[HRM__CH];
     hrm__tcoef *co = hrm__tcache_slot(L);
     int i, q = hrm__tau_scan_panel(c, L, p->a);
-    if (q >= 0 && L->scan_b[q + 1] == p->b) {
+    if (q >= 0 && L->scan->b[q + 1] == p->b) {
         /* a panel of the scan's: its samples, not the medium's again */
         hrm__tau_scan_take(c, L, q, f);
         hrm__tau_fit(c, L, p->a, p->b, p->deg, 1, p->tau_a, f, co, dtau);
@@ -8176,15 +8189,15 @@ static HRM_DEVICE HRM__CALL void hrm__scan_medium(hrm__ctx *c)
         nscan = n >= HRM__SCAN_MAX ? HRM__SCAN_MAX : (int)n + 1;
     }
     /* the samples kept for the layer's first panels */
-    keep = c->decoupled && nq && c->tau->end == c->off_end;
+    keep = c->decoupled && nq && c->tau->end == c->off_end && c->tau->scan;
     if (keep) {
         hrm__tau *L = c->tau;
         L->scan_q = nq;
-        memcpy(L->scan_b, pb, sizeof pb);
-        memset(L->scan_have, 0, sizeof L->scan_have);
-        memset(L->scan_ha, 0, sizeof L->scan_ha);
-        memcpy(L->scan_s[0], sa, sizeof sa);
-        L->scan_have[0] = 1;
+        memcpy(L->scan->b, pb, sizeof pb);
+        memset(L->scan->have, 0, sizeof L->scan->have);
+        memset(L->scan->ha, 0, sizeof L->scan->ha);
+        memcpy(L->scan->s[0], sa, sizeof sa);
+        L->scan->have[0] = 1;
     }
     while (a < c->off_end && c->status == HRM_OK) {
         hrm_real grid = hrm__scan_at(pb, nq, c->off_end, k, nscan), x, fx, at;
@@ -8197,8 +8210,8 @@ static HRM_DEVICE HRM__CALL void hrm__scan_medium(hrm__ctx *c)
         if (!(x > a)) continue;
         fx = hrm__sigma_sum(c, x, -1, sx);
         if (keep && x == grid) {
-            memcpy(c->tau->scan_s[gk], sx, sizeof sx);
-            c->tau->scan_have[gk] = 1;
+            memcpy(c->tau->scan->s[gk], sx, sizeof sx);
+            c->tau->scan->have[gk] = 1;
         }
         for (i = 0, least = HRM__R(HUGE_VAL); i < HRM__CH; ++i) {
             tau[i] += (x - a) * (sa[i] / 2 + sx[i] / 2);
@@ -8239,8 +8252,8 @@ static HRM_DEVICE HRM__CALL void hrm__scan_medium(hrm__ctx *c)
         if (is_brk) {
             fa = hrm__sigma_sum(c, x, 1, sa);
             if (keep && x == grid && gk % 8 == 0) { /* a panel's start: its side */
-                memcpy(c->tau->scan_a[gk / 8], sa, sizeof sa);
-                c->tau->scan_ha[gk / 8] = 1;
+                memcpy(c->tau->scan->a[gk / 8], sa, sizeof sa);
+                c->tau->scan->ha[gk / 8] = 1;
             }
         } else {
             fa = fx;
@@ -8659,25 +8672,51 @@ static HRM_DEVICE unsigned hrm__needs(const hrm_medium *m, const hrm_options *o,
 static HRM_DEVICE hrm_status hrm__stage(hrm__job *j);
 
 /* Without a workspace, each need in a frame of its own. */
-/* The layer with npanel panels and ncoef panels' coefficients: a
-   worst-first method's, a pair's, a fixed-step rule's. */
-#define HRM__LAYER_FRAME(name, npanel, ncoef)                                 \
+/* The layer with npanel panels, ncoef panels' coefficients, ncheck
+   checkpoints and, where scanned, the medium scan's storage: a worst-
+   first method's, a pair's, a fixed-step rule's (with options.find_jumps
+   1, the only one to scan, and without). A fixed-step rule asks for tau at
+   nodes in increasing t: it never marches a forgotten panel again from a
+   checkpoint (were it to, fewer checkpoints would cost lookups, never
+   change a value). */
+#define HRM__LAYER_FRAME_SCAN(name, npanel, ncoef, ncheck)                    \
     static HRM_DEVICE HRM__NOINLINE hrm_status name(hrm__job *j)              \
     {                                                                         \
         hrm__tau layer;                                                       \
         hrm__tpanel tab[npanel];                                              \
         hrm__tcoef cache[ncoef];                                              \
-        layer.tab = tab;                                                      \
-        layer.ntab = npanel;                                                  \
-        layer.cache = cache;                                                  \
-        layer.ncache = ncoef;                                                 \
-        j->at[0] = &layer;                                                    \
-        j->need &= ~HRM__NEED_LAYER;                                          \
-        return hrm__stage(j);                                                 \
+        hrm__tcheck cp[ncheck];                                               \
+        hrm__tscan scan;                                                      \
+        layer.scan = &scan;                                                   \
+        return hrm__with_layer_in(j, &layer, tab, npanel, cache, ncoef, cp, ncheck); \
     }
-HRM__LAYER_FRAME(hrm__with_layer, HRM__TAU_STACK, HRM__TCACHE)
-HRM__LAYER_FRAME(hrm__with_layer_pair, HRM__TAU_STACK_FIXED, HRM__TCACHE)
-HRM__LAYER_FRAME(hrm__with_layer_fixed, HRM__TAU_STACK_FIXED, HRM__TCACHE_FIXED)
+static HRM_DEVICE hrm_status hrm__with_layer_in(hrm__job *j, hrm__tau *layer, hrm__tpanel *tab, int npanel,
+                                                hrm__tcoef *cache, int ncoef, hrm__tcheck *cp, int ncheck)
+{
+    layer->tab = tab;
+    layer->ntab = npanel;
+    layer->cache = cache;
+    layer->ncache = ncoef;
+    layer->cp = cp;
+    layer->cpcap = ncheck;
+    j->at[0] = layer;
+    j->need &= ~HRM__NEED_LAYER;
+    return hrm__stage(j);
+}
+HRM__LAYER_FRAME_SCAN(hrm__with_layer, HRM__TAU_STACK, HRM__TCACHE, HRM__TCHECK)
+HRM__LAYER_FRAME_SCAN(hrm__with_layer_pair, HRM__TAU_STACK_FIXED, HRM__TCACHE, HRM__TCHECK)
+HRM__LAYER_FRAME_SCAN(hrm__with_layer_fixed_scan, HRM__TAU_STACK_FIXED, HRM__TCACHE_FIXED, HRM__TCHECK_FIXED)
+
+static HRM_DEVICE HRM__NOINLINE hrm_status hrm__with_layer_fixed(hrm__job *j)
+{
+    hrm__tau layer;
+    hrm__tpanel tab[HRM__TAU_STACK_FIXED];
+    hrm__tcoef cache[HRM__TCACHE_FIXED];
+    hrm__tcheck cp[HRM__TCHECK_FIXED];
+    layer.scan = NULL;
+    return hrm__with_layer_in(j, &layer, tab, HRM__TAU_STACK_FIXED, cache, HRM__TCACHE_FIXED, cp,
+                              HRM__TCHECK_FIXED);
+}
 
 static HRM_DEVICE HRM__NOINLINE hrm_status hrm__with_memo(hrm__job *j)
 {
@@ -8876,6 +8915,9 @@ static HRM_DEVICE hrm_status hrm__stage(hrm__job *j)
                     L->ncache = HRM__TCACHE;
                     L->tab = (hrm__tpanel *)(j->ws + HRM__TAU_HEAD + HRM__TAU_CACHE_BYTES);
                     L->ntab = HRM_TAU_PANELS;
+                    L->scan = (hrm__tscan *)(j->ws + sizeof(hrm__tau));
+                    L->cp = (hrm__tcheck *)(j->ws + sizeof(hrm__tau) + sizeof(hrm__tscan));
+                    L->cpcap = HRM__TCHECK;
                 } else if (k == 2) {
                     /* the fits' matrices after them */
                     hrm__efit *ef = (hrm__efit *)j->ws;
@@ -8890,6 +8932,7 @@ static HRM_DEVICE hrm_status hrm__stage(hrm__job *j)
     if (j->need & HRM__NEED_LAYER)
         return hrm__methods[j->o.method].family == HRM__ADAPTIVE_QUAD ? hrm__with_layer(j)
              : hrm__methods[j->o.method].family == HRM__PAIR         ? hrm__with_layer_pair(j)
+             : j->o.find_jumps == 1                                  ? hrm__with_layer_fixed_scan(j)
                                                                       : hrm__with_layer_fixed(j);
     if (j->need & HRM__NEED_MEMO) return hrm__with_memo(j);
     if (j->need & HRM__NEED_EFIT)

@@ -633,7 +633,8 @@ static int st_layer(const st_case *k)
 static void st_table(void)
 {
     static st_case cases[ST_MAX_CASES]; /* (static: large; written once, here) */
-    st_worst row[ST_ROWS], own[ST_ROWS]; /* own: the fixed-step methods, tau not from the layer */
+    st_worst row[ST_ROWS], own[ST_ROWS], lay[ST_ROWS]; /* the fixed-step methods: tau not from the layer
+                                                         (own), from it without the scan (lay) */
     st_case nested;
     char desc[256], name[64];
     long largest = 0, status[3] = {0, 0, 0}, u, base;
@@ -653,7 +654,7 @@ static void st_table(void)
         row[r].bytes = 0;
         row[r].at = -1;
         row[r].cases = 0;
-        own[r] = row[r];
+        own[r] = lay[r] = row[r];
     }
     for (i = 0; i < n; ++i) {
         const st_case *k = &cases[i];
@@ -677,6 +678,7 @@ static void st_table(void)
         else st_keep(&row[k->method == HRM_METHOD_DEFAULT ? ST_ROW_EST
                           : k->medium == ST_MED_COUPLED ? ST_ROW_TR_COUPLED : ST_ROW_TR], u, i);
         if (!k->tr_only && !st_adaptive(k->method) && !st_layer(k)) st_keep(&own[k->method], u, i);
+        if (!k->tr_only && !st_adaptive(k->method) && st_layer(k) && k->jumps != 1) st_keep(&lay[k->method], u, i);
         if (!k->tr_only && k->method == HRM_GAUSS_KRONROD)
             st_keep(&row[ST_ROW_GK + (k->gk_mode == HRM_GK_LOCAL) + 2 * (k->gk_rule == HRM_GK_K7)], u, i);
     }
@@ -702,10 +704,14 @@ static void st_table(void)
            callbacks marched without the layer, hrm__reach_march).
            Measured (bytes, gcc): the rectangle rule and Monte Carlo 5 464,
            the analytic march 5 376, Euler 7 056, Simpson 7 176, RK4 and
-           Adams-Bashforth 7 568; with the layer (the default under a warp
-           for Simpson, RK4 and Adams-Bashforth, and with a fit) 13 176 and
-           13 640. clang -O2 inlines more: Simpson's fit on constants 8 504,
-           RK4 8 192, with the layer 14 592. */
+           Adams-Bashforth 7 568. With the layer (the default under a warp
+           for Simpson, RK4 and Adams-Bashforth, and with a fit), in a
+           fixed-step rule's frame of 8 panels, 2 panels' coefficients and
+           4 checkpoints, within 11 KiB: 10 424 and 10 888 (13 176 and
+           13 640 with the adaptive methods' 16 checkpoints and the scan's
+           storage, which the frame holds only with options.find_jumps 1:
+           12 544 and 12 800). clang -O2 inlines more: Simpson's fit on
+           constants 8 504, RK4 8 192, with the layer 11 752. */
         if (r < ST_ROW_TR && own[r].at >= 0) {
             st_describe(&cases[own[r].at], desc, sizeof desc);
             NOTE("  %-20s %8ld  tau not from the layer: %s", "", st_round(own[r].bytes), desc);
@@ -713,6 +719,15 @@ static void st_table(void)
             if (NCH == 3 && sizeof(hrm_real) == 8)
                 CHECK(own[r].bytes <= 8192, "%s: %ld bytes of stack without a workspace, tau not from the layer, "
                       "within 8192", name, own[r].bytes);
+#endif
+        }
+        if (r < ST_ROW_TR && lay[r].at >= 0) {
+            st_describe(&cases[lay[r].at], desc, sizeof desc);
+            NOTE("  %-20s %8ld  tau from the layer, no scan: %s", "", st_round(lay[r].bytes), desc);
+#if defined(__GNUC__) && !defined(__clang__)
+            if (NCH == 3 && sizeof(hrm_real) == 8)
+                CHECK(lay[r].bytes <= 11 * 1024, "%s: %ld bytes of stack without a workspace, tau from the layer "
+                      "without the scan, within 11 KiB", name, lay[r].bytes);
 #endif
         }
     }
