@@ -271,8 +271,8 @@
    (or hrm_solve) for its shadow ray. Randomness (Monte Carlo, jitter) comes
    from options.seed alone: the same inputs give the same answer.
    Stack (tests/stack.c, worst case, double, 3 channels, gcc/clang -O2):
-   fixed-step methods 5.3-8.5 KiB, 10.2-11.5 with the transmittance layer
-   (12.3-13.5 with find_jumps 1); pairs 22-24; Gauss-Kronrod 82-85, nested
+   fixed-step methods 5.3-7.9 KiB, 10.1-11.3 with the transmittance layer
+   (12-13.2 with find_jumps 1); pairs 22-24; Gauss-Kronrod 82-85, nested
    Simpson 92-95; the shadow-ray estimator 12; 2.2 times that with 8
    channels, half in float, at most 48 (1 + HRM_CHANNELS) KiB; twice with a
    shadow ray in Li. options.workspace (hrm_workspace_size bytes, aligned to
@@ -4486,7 +4486,7 @@ static HRM_DEVICE HRM__CALL void hrm__efit_bound_t(const hrm__efit *F, const hrm
    c->unsure (hrm__finish warns where it matters). */
 static HRM_DEVICE HRM__CALL void hrm__efit_panel(const hrm__ctx *c, const hrm__efit *F, const hrm__pt *pt, hrm_real hl,
                             hrm_real out[HRM__CH], hrm_real mass[HRM__CH],
-                            hrm_real g[HRM__EFIT_MAX][HRM__CH], hrm_real un[HRM__CH])
+                            hrm_real (*g)[HRM__CH], hrm_real un[HRM__CH])
 {
     int n = F->n, i, j, k;
     hrm_real s[HRM__EFIT_MAX] = {0};
@@ -4656,17 +4656,12 @@ static HRM_DEVICE HRM__CALL void hrm__march(hrm__ctx *c, int N, hrm_real xi, hrm
    neighbours (a thick, sharply varying medium could otherwise overshoot). */
 /* One Simpson panel's parabola against the exact local exponential, added
    to L: a frame of its own, which a solve without a fit never holds. */
-static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__simpson_fit(hrm__ctx *c, const hrm__pt *a, const hrm__pt *mid,
-                                                                const hrm__pt *b, hrm_real H, hrm_real L[HRM__CH],
-                                                                hrm_real eL[HRM__CH])
+static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__simpson_fit(hrm__ctx *c, const hrm__pt q[3], hrm_real H,
+                                                                hrm_real L[HRM__CH], hrm_real eL[HRM__CH])
 {
-    hrm__pt P3[3];
-    hrm_real out[HRM__CH], mass[HRM__CH], g[HRM__EFIT_MAX][HRM__CH], un[HRM__CH];
+    hrm_real out[HRM__CH], mass[HRM__CH], g[3][HRM__CH], un[HRM__CH];
     int i;
-    P3[0] = *a;
-    P3[1] = *mid;
-    P3[2] = *b;
-    hrm__efit_panel(c, &c->ef[0], P3, H / 2, out, mass, g, un);
+    hrm__efit_panel(c, &c->ef[0], q, H / 2, out, mass, g, un);
     for (i = 0; i < HRM__CH; ++i) {
         hrm__sum(&L[i], &eL[i], out[i]);
         c->unsure[i] += un[i];
@@ -4675,23 +4670,24 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__simpson_fit(hrm__ctx *c, con
 
 static HRM_DEVICE HRM__CALL void hrm__simpson(hrm__ctx *c, int N, hrm_real L[HRM__CH], hrm_real tau[HRM__CH])
 {
-    hrm__pt a, mid, b;
+    hrm__pt q[3]; /* the panel's nodes, in a row for the fit */
+    hrm__pt *const a = &q[0], *const mid = &q[1], *const b = &q[2];
     hrm_real ea[HRM__CH]; /* exp(-tau) * gq at the panel's left end */
     hrm_real span = c->pb - c->pa;
     hrm_real eL[HRM__CH] = {0}, eT[HRM__CH] = {0}; /* hrm__sum's */
     int k, i;
 
-    hrm__eval(c, c->pa, &a);
-    for (i = 0; i < HRM__CH; ++i) ea[i] = hrm__att(c, &a, i, 0) * a.gq[i];
+    hrm__eval(c, c->pa, a);
+    for (i = 0; i < HRM__CH; ++i) ea[i] = hrm__att(c, a, i, 0) * a->gq[i];
     for (k = 0; k < N; ++k) {
         hrm_real pl = c->pa + span * ((hrm_real)k / (hrm_real)N);
         hrm_real pr = k + 1 == N ? c->pb : c->pa + span * ((hrm_real)(k + 1) / (hrm_real)N);
         hrm_real H = pr - pl;
-        hrm__eval(c, pl + H / 2, &mid);
-        hrm__eval(c, pr, &b);
+        hrm__eval(c, pl + H / 2, mid);
+        hrm__eval(c, pr, b);
         if (c->expo) {
-            hrm__simpson_fit(c, &a, &mid, &b, H, L, eL);
-            a = b;
+            hrm__simpson_fit(c, q, H, L, eL);
+            *a = *b;
             c->stats.steps++;
             if (c->status != HRM_OK) break;
             continue;
@@ -4701,9 +4697,9 @@ static HRM_DEVICE HRM__CALL void hrm__simpson(hrm__ctx *c, int N, hrm_real L[HRM
             if (c->coupled) {
                 hrm_real e = eT[i];
                 tb = tau[i];
-                hrm__sum(&tb, &e, c->sbar[i] * (b.off - a.off) + H / 6 * (a.gs[i] + 4 * mid.gs[i] + b.gs[i]));
-                tm = tau[i] + c->sbar[i] * (mid.off - a.off) +
-                     H / 24 * (5 * a.gs[i] + 8 * mid.gs[i] - b.gs[i]);
+                hrm__sum(&tb, &e, c->sbar[i] * (b->off - a->off) + H / 6 * (a->gs[i] + 4 * mid->gs[i] + b->gs[i]));
+                tm = tau[i] + c->sbar[i] * (mid->off - a->off) +
+                     H / 24 * (5 * a->gs[i] + 8 * mid->gs[i] - b->gs[i]);
                 if (tb < tau[i]) {
                     tb = tau[i];
                     e = 0;
@@ -4712,12 +4708,12 @@ static HRM_DEVICE HRM__CALL void hrm__simpson(hrm__ctx *c, int N, hrm_real L[HRM
                 if (tm > tb) tm = tb;
                 eT[i] = e;
             }
-            eb = hrm__att(c, &b, i, tb) * b.gq[i];
-            hrm__sum(&L[i], &eL[i], H / 6 * (ea[i] + 4 * hrm__att(c, &mid, i, tm) * mid.gq[i] + eb));
+            eb = hrm__att(c, b, i, tb) * b->gq[i];
+            hrm__sum(&L[i], &eL[i], H / 6 * (ea[i] + 4 * hrm__att(c, mid, i, tm) * mid->gq[i] + eb));
             ea[i] = eb;
             tau[i] = tb;
         }
-        a = b;
+        *a = *b;
         c->stats.steps++;
         if (c->status != HRM_OK) break;
     }
@@ -4765,14 +4761,15 @@ typedef struct hrm__nodes_info {
        (hrm__legendre_inverse, on 2 c - 1): the top four Legendre
        coefficients on the step of the polynomial through values at the
        distinct nodes, row r at leg[r * m] (the kink test, hrm__leg_tail;
-       set by hrm__nodes_legendre where m >= 6) */
-    hrm_real leg[4 * HRM__MAX_STAGES];
+       set by hrm__nodes_legendre where m >= 6, in the adaptive pair
+       driver's frame; NULL in a fixed step's) */
+    const hrm_real *leg;
 } hrm__nodes_info;
 
 /* ni->leg (an adaptive pair's kink test, hrm__pair_tail): the four
    rows it reads of the inverse, pairs of 6 distinct nodes or more (a
    frame of its own: the inverse's 1 KiB is gone before the solve). */
-static HRM_DEVICE HRM__NOINLINE void hrm__nodes_legendre(hrm__nodes_info *ni)
+static HRM_DEVICE HRM__NOINLINE void hrm__nodes_legendre(hrm__nodes_info *ni, hrm_real leg[4 * HRM__MAX_STAGES])
 {
     hrm_real y[HRM__MAX_STAGES], V[HRM__MAX_STAGES * HRM__MAX_STAGES], I[HRM__MAX_STAGES * HRM__MAX_STAGES];
     int m = ni->m, j, r;
@@ -4780,13 +4777,15 @@ static HRM_DEVICE HRM__NOINLINE void hrm__nodes_legendre(hrm__nodes_info *ni)
     for (j = 0; j < m; ++j) y[j] = 2 * ni->c[j] - 1;
     hrm__legendre_inverse(y, m, HRM__MAX_STAGES, V, I);
     for (r = 0; r < 4; ++r)
-        for (j = 0; j < m; ++j) ni->leg[r * m + j] = I[(m - 1 - r) * HRM__MAX_STAGES + j];
+        for (j = 0; j < m; ++j) leg[r * m + j] = I[(m - 1 - r) * HRM__MAX_STAGES + j];
+    ni->leg = leg;
 }
 
 static HRM_DEVICE HRM__CALL void hrm__nodes_init(const hrm__tableau *tb, hrm__nodes_info *ni)
 {
     int i, j, k;
     ni->m = 0;
+    ni->leg = NULL;
     for (i = 0; i < tb->s; ++i) {
         for (j = 0; j < ni->m && ni->c[j] != tb->c[i]; ++j) {}
         if (j < ni->m) continue;
@@ -5178,7 +5177,7 @@ static HRM_DEVICE hrm_real hrm__leg_tail(const hrm_real *rows, int n, const hrm_
 static HRM_DEVICE void hrm__pair_tail(const hrm__nodes_info *ni, const hrm_real *f, hrm_real h, hrm_real *em)
 {
     hrm_real tail;
-    if (ni->m < 6) return;
+    if (ni->m < 6 || !ni->leg) return;
     tail = hrm__leg_tail(ni->leg, ni->m, f, 16) * HRM_FABS(h) / 4;
     if (tail > *em) *em = tail;
 }
@@ -5740,11 +5739,12 @@ static HRM_DEVICE HRM__CALL void hrm__ivp_adaptive(hrm__ctx *c, const hrm__table
     hrm__pt start, end;
     int cost = hrm__stage_cost(tb), have = 0, after_reject = 0, first = 1, n;
     hrm__nodes_info ni;
+    hrm_real leg[4 * HRM__MAX_STAGES]; /* ni.leg */
     /* the RTE form: h sigma_t at most the tableau's zmax */
     hrm_real zmax = c->rte ? tb->zmax : 0, hz = HRM__R(HUGE_VAL);
 
     hrm__nodes_init(tb, &ni);
-    hrm__nodes_legendre(&ni);
+    hrm__nodes_legendre(&ni, leg);
     hrm__ivp_init(c, y);
     /* The first attempt is the pilot that sets the scale. */
     h = h0 > 0 ? h0 : P * HRM__R(0.5) * HRM_POW(c->rtol, 1 / (kk + 1));

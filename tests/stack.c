@@ -698,28 +698,26 @@ static void st_table(void)
               w->bytes, STACK_LIMIT);
         if (w->bytes > largest) largest = w->bytes;
         /* The fixed-step methods within 8 KiB without a workspace (3
-           channels, double, gcc -O2: what make test builds) wherever their
-           tau is not the decoupled layer's: from their own nodes, the
-           stream or a closed form (the distance warp's reach on sigma
-           callbacks marched without the layer, hrm__reach_march).
-           Measured (bytes, gcc): the rectangle rule and Monte Carlo 5 464,
-           the analytic march 5 376, Euler 7 056, Simpson 7 176, RK4 and
-           Adams-Bashforth 7 568. With the layer (the default under a warp
-           for Simpson, RK4 and Adams-Bashforth, and with a fit), in a
-           fixed-step rule's frame of 8 panels, 2 panels' coefficients and
-           4 checkpoints, within 11 KiB: 10 424 and 10 888 (13 176 and
-           13 640 with the adaptive methods' 16 checkpoints and the scan's
+           channels, double, gcc and clang -O2) wherever their tau is not
+           the decoupled layer's: from their own nodes, the stream or a
+           closed form (the distance warp's reach on sigma callbacks
+           marched without the layer, hrm__reach_march). Measured (bytes,
+           gcc; clang): the rectangle rule and Monte Carlo 5 464; 6 144,
+           the analytic march 5 376; 6 592, Euler 6 816; 7 784, Simpson
+           6 440; 7 704, RK4 and Adams-Bashforth 7 328; 8 096. With the
+           layer (the default under a warp for Simpson, RK4 and Adams-
+           Bashforth, and with a fit), in a fixed-step rule's frame of 8
+           panels, 2 panels' coefficients and 4 checkpoints, within 11 KiB
+           (gcc): 10 344 and 10 648; 11 480 and 11 576 (13 176 and 13 640
+           with the adaptive methods' 16 checkpoints and the scan's
            storage, which the frame holds only with options.find_jumps 1:
-           12 544 and 12 800). clang -O2 inlines more: Simpson's fit on
-           constants 8 504, RK4 8 192, with the layer 11 752. */
+           12 248 and 12 552). */
         if (r < ST_ROW_TR && own[r].at >= 0) {
             st_describe(&cases[own[r].at], desc, sizeof desc);
             NOTE("  %-20s %8ld  tau not from the layer: %s", "", st_round(own[r].bytes), desc);
-#if defined(__GNUC__) && !defined(__clang__)
             if (NCH == 3 && sizeof(hrm_real) == 8)
                 CHECK(own[r].bytes <= 8192, "%s: %ld bytes of stack without a workspace, tau not from the layer, "
                       "within 8192", name, own[r].bytes);
-#endif
         }
         if (r < ST_ROW_TR && lay[r].at >= 0) {
             st_describe(&cases[lay[r].at], desc, sizeof desc);

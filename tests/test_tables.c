@@ -285,7 +285,7 @@ static void ad_gk_tables(void)
     }
 }
 
-/* The pairs' Legendre rows (hrm__nodes_info.leg, set by
+/* The pairs' Legendre rows (hrm__nodes_info.leg, set in the caller's array by
    hrm__nodes_legendre from each tableau's distinct nodes through
    hrm__legendre_inverse, the exponential fits' inverse: the kink test,
    hrm__pair_tail): rows m - 1 .. m - 4, checked as the Gauss-Kronrod
@@ -301,10 +301,11 @@ static void ad_pair_legendre(void)
         const hrm__tableau *tb = hrm__methods[HRM_BOGACKI_SHAMPINE + p].tb;
         const char *name = hrm_method_name((hrm_method)(HRM_BOGACKI_SHAMPINE + p));
         hrm__nodes_info ni;
+        hrm_real leg[4 * HRM__MAX_STAGES];
         double x[HRM__MAX_STAGES];
         int deg[4], j, m;
         hrm__nodes_init(tb, &ni);
-        hrm__nodes_legendre(&ni);
+        hrm__nodes_legendre(&ni, leg);
         m = ni.m;
         CHECK_INT(m, want_m[p], "%s: distinct nodes", name);
         if (m < 6) continue;
