@@ -271,8 +271,8 @@
    (or hrm_solve) for its shadow ray. Randomness (Monte Carlo, jitter) comes
    from options.seed alone: the same inputs give the same answer.
    Stack (tests/stack.c, worst case, double, 3 channels, gcc/clang -O2):
-   fixed-step methods 5.3-7.9 KiB, 10.1-11.3 with the transmittance layer
-   (12-13.2 with find_jumps 1); pairs 22-24; Gauss-Kronrod 82-85, nested
+   fixed-step methods 5.3-7.9 KiB, 9.7-11 with the transmittance layer
+   (11.6-12.8 with find_jumps 1); pairs 22-24; Gauss-Kronrod 82-85, nested
    Simpson 92-95; the shadow-ray estimator 12; 2.2 times that with 8
    channels, half in float, at most 48 (1 + HRM_CHANNELS) KiB; twice with a
    shadow ray in Li. options.workspace (hrm_workspace_size bytes, aligned to
@@ -1937,14 +1937,16 @@ HRM__STATIC_ASSERT(tau_panels_16_to_65536, HRM_TAU_PANELS >= 16 && HRM_TAU_PANEL
 #define HRM__CHEB 16       /* the highest degree of a panel */
 #define HRM__TCACHE 8      /* panels whose coefficients are kept */
 /* A fixed-step rule asks for tau at nodes in increasing t: its frame's
-   layer keeps 8 panels and the coefficients of 2 (the panel asked for
+   layer keeps 4 panels and the coefficients of 2 (the panel asked for
    and the one marched after it), 4 checkpoints and, unless it scans the
-   medium (options.find_jumps 1), no scan storage: 7.5 KiB less at 3
-   channels than an adaptive method's. A pair
+   medium (options.find_jumps 1), no scan storage: 7.9 KiB less at 3
+   channels than an adaptive method's (make bench's and make render's
+   lookups the same as with 8 panels and 16 checkpoints). A pair
    steps forward too, but retries a rejected step and starts again where
    the medium check found a miss: 8 panels, 8 panels' coefficients (with
    4, make bench's hifreq rows took 10% more lookups). */
-#define HRM__TAU_STACK_FIXED 8
+#define HRM__TAU_STACK_FIXED 8 /* a pair's */
+#define HRM__TAU_STACK_RULE 4  /* a fixed-step rule's */
 #define HRM__TCACHE_FIXED 2
 #define HRM__TMEM 32       /* samples of rejected panels remembered */
 #define HRM__TCHECK 16     /* checkpoints of the march */
@@ -1993,8 +1995,8 @@ typedef struct hrm__tscan {
 
 typedef struct hrm__tau {
     hrm__tpanel *tab;       /* panel i at tab[i % ntab] (HRM_TAU_PANELS in a
-                               workspace, HRM__TAU_STACK or
-                               HRM__TAU_STACK_FIXED in a frame) */
+                               workspace, HRM__TAU_STACK, _FIXED or _RULE
+                               in a frame) */
     long ntab;
     long count;             /* panels accepted so far */
     long base;              /* the first panel marched since the last start */
@@ -8705,16 +8707,16 @@ static HRM_DEVICE hrm_status hrm__with_layer_in(hrm__job *j, hrm__tau *layer, hr
 }
 HRM__LAYER_FRAME_SCAN(hrm__with_layer, HRM__TAU_STACK, HRM__TCACHE, HRM__TCHECK)
 HRM__LAYER_FRAME_SCAN(hrm__with_layer_pair, HRM__TAU_STACK_FIXED, HRM__TCACHE, HRM__TCHECK)
-HRM__LAYER_FRAME_SCAN(hrm__with_layer_fixed_scan, HRM__TAU_STACK_FIXED, HRM__TCACHE_FIXED, HRM__TCHECK_FIXED)
+HRM__LAYER_FRAME_SCAN(hrm__with_layer_fixed_scan, HRM__TAU_STACK_RULE, HRM__TCACHE_FIXED, HRM__TCHECK_FIXED)
 
 static HRM_DEVICE HRM__NOINLINE hrm_status hrm__with_layer_fixed(hrm__job *j)
 {
     hrm__tau layer;
-    hrm__tpanel tab[HRM__TAU_STACK_FIXED];
+    hrm__tpanel tab[HRM__TAU_STACK_RULE];
     hrm__tcoef cache[HRM__TCACHE_FIXED];
     hrm__tcheck cp[HRM__TCHECK_FIXED];
     layer.scan = NULL;
-    return hrm__with_layer_in(j, &layer, tab, HRM__TAU_STACK_FIXED, cache, HRM__TCACHE_FIXED, cp,
+    return hrm__with_layer_in(j, &layer, tab, HRM__TAU_STACK_RULE, cache, HRM__TCACHE_FIXED, cp,
                               HRM__TCHECK_FIXED);
 }
 

@@ -706,12 +706,12 @@ static void st_table(void)
            the analytic march 5 376; 6 592, Euler 6 816; 7 784, Simpson
            6 440; 7 704, RK4 and Adams-Bashforth 7 328; 8 096. With the
            layer (the default under a warp for Simpson, RK4 and Adams-
-           Bashforth, and with a fit), in a fixed-step rule's frame of 8
+           Bashforth, and with a fit), in a fixed-step rule's frame of 4
            panels, 2 panels' coefficients and 4 checkpoints, within 11 KiB
-           (gcc): 10 344 and 10 648; 11 480 and 11 576 (13 176 and 13 640
-           with the adaptive methods' 16 checkpoints and the scan's
-           storage, which the frame holds only with options.find_jumps 1:
-           12 248 and 12 552). */
+           (gcc): 9 960 and 10 264; 11 096 and 11 192 (13 176 and 13 640
+           with 8 panels, the adaptive methods' 16 checkpoints and the
+           scan's storage, which the frame holds only with
+           options.find_jumps 1: 11 864 and 12 168). */
         if (r < ST_ROW_TR && own[r].at >= 0) {
             st_describe(&cases[own[r].at], desc, sizeof desc);
             NOTE("  %-20s %8ld  tau not from the layer: %s", "", st_round(own[r].bytes), desc);
