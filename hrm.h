@@ -7233,7 +7233,6 @@ HRM__DEF HRM_DEVICE hrm_options hrm_default_options(hrm_method method)
     return o;
 }
 
-/* Resolve zeros to defaults; validate. */
 /* A panel of the shadow-ray estimator (hrm__shadow_march). */
 typedef struct hrm__panel {
     hrm_real a, h;
@@ -7244,7 +7243,7 @@ typedef struct hrm__panel {
 } hrm__panel;
 
 /* The storage a solve may need, one bit each (hrm__needs, hrm__stage). */
-#define HRM__NEED_LAYER 1u /* the transmittance layer (18 KiB at 3 channels) */
+#define HRM__NEED_LAYER 1u /* the transmittance layer (20 KiB at 3 channels) */
 #define HRM__NEED_MEMO 2u  /* the adaptive methods' remembered abscissae */
 #define HRM__NEED_EFIT 4u  /* the exponential fits' tables */
 #define HRM__NEED_NS 8u    /* nested Simpson's storage */
@@ -7328,6 +7327,7 @@ static HRM_DEVICE long hrm__piece_cost(const hrm_options *o, long n)
          : 0L;
 }
 
+/* Resolve zeros to defaults; validate. */
 static HRM_DEVICE HRM__CALL hrm_status hrm__resolve(const hrm_options *in, hrm_options *o, int tau_in_t)
 {
     hrm_options d = hrm_default_options(in && in->method != HRM_METHOD_DEFAULT ? in->method : HRM_NESTED_SIMPSON);
