@@ -7258,13 +7258,17 @@ typedef struct hrm__panel {
                                 breakpoints: a workspace's only (without
                                 one, hrm__solve_broken's own frame) */
 #define HRM__NEED_SHADOW 256u /* the shadow-ray estimator's panels: a
-                                workspace's only (without one, its own
-                                frame, hrm__shadow_march) */
+                                workspace's only (without one, or in a GPU
+                                kernel, its own frame, hrm__shadow_march) */
 #define HRM__NEEDS 9
+/* (in a GPU kernel the context and the estimator's panels stay on the
+   thread's stack, for the reason above) */
 #ifdef __CUDA_ARCH__
 #define HRM__CTX_NEED 0u
+#define HRM__SHADOW_NEED 0u
 #else
 #define HRM__CTX_NEED HRM__NEED_CTX
+#define HRM__SHADOW_NEED HRM__NEED_SHADOW
 #endif
 
 /* The bytes of need bit k (1u << k), rounded up to 16 (the alignment of
@@ -8663,7 +8667,7 @@ static HRM_DEVICE unsigned hrm__needs(const hrm_medium *m, const hrm_options *o,
     if (!estimator && src == HRM__TAU_LAYER) need |= HRM__NEED_LAYER;
     if (hrm__is_adaptive(o->method) && !estimator) need |= HRM__NEED_MEMO;
     if (o->exponential && hrm__tau_closed(src)) need |= HRM__NEED_EFIT;
-    need |= HRM__CTX_NEED | HRM__NEED_PIECES | (estimator ? HRM__NEED_SHADOW : 0u);
+    need |= HRM__CTX_NEED | HRM__NEED_PIECES | (estimator ? HRM__SHADOW_NEED : 0u);
     /* the drivers run where there is a source or tau comes from their
        nodes (not for Tr alone from the layer or a closed form) */
     if (!estimator && (le || li || !hrm__tau_closed(src)))
