@@ -126,7 +126,7 @@
    HRM_GK_INTERVALS 128 (8-4096), HRM_GK_INITIAL 32: global Gauss-Kronrod's.
    HRM_MAX_DEPTH 60 (8-200): the left-to-right finish's depth.
    HRM_TAU_PANELS 128 (16-65536): the layer's panel table (on the stack 32,
-                       8 for the fixed-step rules and pairs).
+                       8 for the pairs, 4 for the fixed-step rules).
    HRM_SHADOW_PANELS 48 (8-4096): the shadow-ray estimator's a segment.
    A value outside its range fails to compile (a static assertion).
    HRM_ASSERT(x)       internal invariants only; assert() by default.
