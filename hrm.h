@@ -3066,6 +3066,13 @@ static HRM_DEVICE HRM__CALL void hrm__tau_reach(hrm__ctx *c, hrm_real reach, hrm
    reach found that early is not sampled. Where the thinnest channel's tau
    reaches `reach`, x is found on the broken line through the panel's
    ends and middle (a panel taken at the floor: its end). */
+/* Boole's rule over a width h on the samples f[0], f[s], .., f[4 s] of
+   channel i (Abramowitz and Stegun 25.4.14). */
+static HRM_DEVICE hrm_real hrm__boole(const hrm_real (*f)[HRM__CH], int s, int i, hrm_real h)
+{
+    return h / 90 * (7 * (f[0][i] + f[4 * s][i]) + 32 * (f[s][i] + f[3 * s][i]) + 12 * f[2 * s][i]);
+}
+
 static HRM_DEVICE HRM__CALL void hrm__reach_march(hrm__ctx *c, hrm_real end, hrm_real reach, hrm_real *x,
                                                   hrm_real *tx, hrm_real *lowest)
 {
@@ -3084,9 +3091,8 @@ static HRM_DEVICE HRM__CALL void hrm__reach_march(hrm__ctx *c, hrm_real end, hrm
             if (!have || (j & 1)) hrm__sigma_t_at(c, a + h * (hrm_real)j / 8, 0, f[j]);
         if (c->status != HRM_OK) return;
         for (i = 0; i < HRM__CH; ++i) {
-            hrm_real whole = h / 90 * (7 * (f[0][i] + f[8][i]) + 32 * (f[2][i] + f[6][i]) + 12 * f[4][i]);
-            hrm_real l = h / 180 * (7 * (f[0][i] + f[4][i]) + 32 * (f[1][i] + f[3][i]) + 12 * f[2][i]);
-            hrm_real r = h / 180 * (7 * (f[4][i] + f[8][i]) + 32 * (f[5][i] + f[7][i]) + 12 * f[6][i]);
+            const hrm_real(*cf)[HRM__CH] = (const hrm_real(*)[HRM__CH])f;
+            hrm_real whole = hrm__boole(cf, 2, i, h), l = hrm__boole(cf, 1, i, h / 2), r = hrm__boole(cf + 4, 1, i, h / 2);
             hrm_real e = HRM_FABS(l + r - whole) / 15, tol = HRM__R(1e-3) * (l + r > tau[i] * h / b ? l + r : tau[i] * h / b);
             if (e > 0 && !(e <= worst * tol)) worst = e / tol; /* (tol 0: e 0, or a reject) */
             tm[i] = tau[i] + l;
@@ -7270,6 +7276,8 @@ typedef struct hrm__panel {
 #define HRM__CTX_NEED HRM__NEED_CTX
 #define HRM__SHADOW_NEED HRM__NEED_SHADOW
 #endif
+/* what the shadow-ray estimator holds (hrm__needs) */
+#define HRM__ESTIMATOR_NEED (HRM__CTX_NEED | HRM__NEED_PIECES | HRM__SHADOW_NEED)
 
 /* The bytes of need bit k (1u << k), rounded up to 16 (the alignment of
    the caller's workspace, which holds them in this order). */
@@ -7296,16 +7304,23 @@ static HRM_DEVICE unsigned hrm__may_need(const hrm_options *o)
            (d == HRM__DRV_GK ? HRM__NEED_GK : 0u);
 }
 
-/* What hrm_workspace_size says for resolved options o: with nested
-   Simpson (what HRM_METHOD_DEFAULT resolves to), the larger of that and
-   what hrm_transmittance's estimator takes (the context, the pieces'
-   tables and its panels, in that order). */
-static HRM_DEVICE size_t hrm__ws_bytes(const hrm_options *o)
+/* The bytes of the needs in mask, in a workspace. */
+static HRM_DEVICE size_t hrm__mask_bytes(unsigned mask)
 {
-    size_t n = 0, est = hrm__need_bytes(6) + hrm__need_bytes(7) + hrm__need_bytes(8);
+    size_t n = 0;
     int k;
     for (k = 0; k < HRM__NEEDS; ++k)
-        if (hrm__may_need(o) & (1u << k)) n += hrm__need_bytes(k);
+        if (mask & (1u << k)) n += hrm__need_bytes(k);
+    return n;
+}
+
+/* What hrm_workspace_size says for resolved options o: with nested
+   Simpson (what HRM_METHOD_DEFAULT resolves to), the larger of that and
+   what hrm_transmittance's estimator takes (HRM__ESTIMATOR_NEED). */
+static HRM_DEVICE size_t hrm__ws_bytes(const hrm_options *o)
+{
+    size_t n = hrm__mask_bytes(hrm__may_need(o));
+    size_t est = hrm__mask_bytes(HRM__ESTIMATOR_NEED);
     return o->method == HRM_NESTED_SIMPSON && est > n ? est : n;
 }
 
@@ -8667,7 +8682,7 @@ static HRM_DEVICE unsigned hrm__needs(const hrm_medium *m, const hrm_options *o,
     if (!estimator && src == HRM__TAU_LAYER) need |= HRM__NEED_LAYER;
     if (hrm__is_adaptive(o->method) && !estimator) need |= HRM__NEED_MEMO;
     if (o->exponential && hrm__tau_closed(src)) need |= HRM__NEED_EFIT;
-    need |= HRM__CTX_NEED | HRM__NEED_PIECES | (estimator ? HRM__SHADOW_NEED : 0u);
+    need |= estimator ? HRM__ESTIMATOR_NEED : HRM__CTX_NEED | HRM__NEED_PIECES;
     /* the drivers run where there is a source or tau comes from their
        nodes (not for Tr alone from the layer or a closed form) */
     if (!estimator && (le || li || !hrm__tau_closed(src)))
@@ -8679,50 +8694,37 @@ static HRM_DEVICE hrm_status hrm__stage(hrm__job *j);
 
 /* Without a workspace, each need in a frame of its own. */
 /* The layer with npanel panels, ncoef panels' coefficients, ncheck
-   checkpoints and, where scanned, the medium scan's storage: a worst-
+   checkpoints and, where scanned, the medium scan's storage (scan_decl
+   declares it, scan_at points to it; empty and NULL without): a worst-
    first method's, a pair's, a fixed-step rule's (with options.find_jumps
    1, the only one to scan, and without). A fixed-step rule asks for tau at
    nodes in increasing t: it never marches a forgotten panel again from a
    checkpoint (were it to, fewer checkpoints would cost lookups, never
    change a value). */
-#define HRM__LAYER_FRAME_SCAN(name, npanel, ncoef, ncheck)                    \
+#define HRM__LAYER_FRAME(name, npanel, ncoef, ncheck, scan_decl, scan_at) \
     static HRM_DEVICE HRM__NOINLINE hrm_status name(hrm__job *j)              \
     {                                                                         \
         hrm__tau layer;                                                       \
         hrm__tpanel tab[npanel];                                              \
         hrm__tcoef cache[ncoef];                                              \
         hrm__tcheck cp[ncheck];                                               \
-        hrm__tscan scan;                                                      \
-        layer.scan = &scan;                                                   \
-        return hrm__with_layer_in(j, &layer, tab, npanel, cache, ncoef, cp, ncheck); \
+        scan_decl                                                             \
+        layer.tab = tab;                                                      \
+        layer.ntab = npanel;                                                  \
+        layer.cache = cache;                                                  \
+        layer.ncache = ncoef;                                                 \
+        layer.cp = cp;                                                        \
+        layer.cpcap = ncheck;                                                 \
+        layer.scan = scan_at;                                                 \
+        j->at[0] = &layer;                                                    \
+        j->need &= ~HRM__NEED_LAYER;                                          \
+        return hrm__stage(j);                                                 \
     }
-static HRM_DEVICE hrm_status hrm__with_layer_in(hrm__job *j, hrm__tau *layer, hrm__tpanel *tab, int npanel,
-                                                hrm__tcoef *cache, int ncoef, hrm__tcheck *cp, int ncheck)
-{
-    layer->tab = tab;
-    layer->ntab = npanel;
-    layer->cache = cache;
-    layer->ncache = ncoef;
-    layer->cp = cp;
-    layer->cpcap = ncheck;
-    j->at[0] = layer;
-    j->need &= ~HRM__NEED_LAYER;
-    return hrm__stage(j);
-}
-HRM__LAYER_FRAME_SCAN(hrm__with_layer, HRM__TAU_STACK, HRM__TCACHE, HRM__TCHECK)
-HRM__LAYER_FRAME_SCAN(hrm__with_layer_pair, HRM__TAU_STACK_FIXED, HRM__TCACHE, HRM__TCHECK)
-HRM__LAYER_FRAME_SCAN(hrm__with_layer_fixed_scan, HRM__TAU_STACK_RULE, HRM__TCACHE_FIXED, HRM__TCHECK_FIXED)
-
-static HRM_DEVICE HRM__NOINLINE hrm_status hrm__with_layer_fixed(hrm__job *j)
-{
-    hrm__tau layer;
-    hrm__tpanel tab[HRM__TAU_STACK_RULE];
-    hrm__tcoef cache[HRM__TCACHE_FIXED];
-    hrm__tcheck cp[HRM__TCHECK_FIXED];
-    layer.scan = NULL;
-    return hrm__with_layer_in(j, &layer, tab, HRM__TAU_STACK_RULE, cache, HRM__TCACHE_FIXED, cp,
-                              HRM__TCHECK_FIXED);
-}
+HRM__LAYER_FRAME(hrm__with_layer, HRM__TAU_STACK, HRM__TCACHE, HRM__TCHECK, hrm__tscan scan;, &scan)
+HRM__LAYER_FRAME(hrm__with_layer_pair, HRM__TAU_STACK_FIXED, HRM__TCACHE, HRM__TCHECK, hrm__tscan scan;, &scan)
+HRM__LAYER_FRAME(hrm__with_layer_fixed_scan, HRM__TAU_STACK_RULE, HRM__TCACHE_FIXED, HRM__TCHECK_FIXED,
+                 hrm__tscan scan;, &scan)
+HRM__LAYER_FRAME(hrm__with_layer_fixed, HRM__TAU_STACK_RULE, HRM__TCACHE_FIXED, HRM__TCHECK_FIXED, , NULL)
 
 static HRM_DEVICE HRM__NOINLINE hrm_status hrm__with_memo(hrm__job *j)
 {
@@ -8992,7 +8994,7 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__run(const hrm_medium *m, hrm_real t0
     j.tr_end = tr_end;
     j.need = hrm__needs(m, &j.o, tr_only, j.estimator);
     j.ws = (unsigned char *)j.o.workspace;
-    if (!j.ws) j.need &= ~(HRM__NEED_FINISH | HRM__NEED_CTX | HRM__NEED_PIECES);
+    if (!j.ws) j.need &= ~(HRM__NEED_FINISH | HRM__NEED_CTX | HRM__NEED_PIECES | HRM__NEED_SHADOW);
     return hrm__stage(&j);
 }
 
