@@ -127,7 +127,7 @@
    HRM_MAX_DEPTH 60 (8-200): the left-to-right finish's depth.
    HRM_TAU_PANELS 128 (16-65536): the layer's panel table (on the stack 32,
                        8 for the pairs, 4 for the fixed-step rules).
-   HRM_SHADOW_PANELS 48 (8-4096): the shadow-ray estimator's a segment.
+   HRM_SHADOW_PANELS 48 (16-4096): the shadow-ray estimator's a segment.
    A value outside its range fails to compile (a static assertion).
    HRM_ASSERT(x)       internal invariants only; assert() by default.
    HRM_SQRT, HRM_EXP, HRM_EXPM1, HRM_LOG, HRM_LOG1P, HRM_POW, HRM_FABS,
@@ -1067,7 +1067,10 @@ HRM__STATIC_ASSERT(ns_intervals_8_to_4096, HRM_NS_INTERVALS >= 8 && HRM_NS_INTER
 HRM__STATIC_ASSERT(ns_panels_1_to_ns_intervals, HRM_NS_PANELS >= 1 && HRM_NS_PANELS <= HRM_NS_INTERVALS);
 HRM__STATIC_ASSERT(gk_intervals_8_to_4096, HRM_GK_INTERVALS >= 8 && HRM_GK_INTERVALS <= 4096);
 HRM__STATIC_ASSERT(gk_initial_1_to_gk_intervals, HRM_GK_INITIAL >= 1 && HRM_GK_INITIAL <= HRM_GK_INTERVALS);
-HRM__STATIC_ASSERT(shadow_panels_8_to_4096, HRM_SHADOW_PANELS >= 8 && HRM_SHADOW_PANELS <= 4096);
+HRM__STATIC_ASSERT(shadow_panels_16_to_4096, HRM_SHADOW_PANELS >= 16 && HRM_SHADOW_PANELS <= 4096);
+/* the panels a next segment of the estimator aims to start with
+   (hrm__shadow_run) */
+#define HRM__SHADOW_AIM (HRM_SHADOW_PANELS / 4 > 8 ? HRM_SHADOW_PANELS / 4 : 8)
 
 #define HRM__MEMO 32 /* abscissae the adaptive methods remember, and the
                         ray's end in a slot of its own (the last index) */
@@ -8472,8 +8475,10 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__finish(hrm__ctx *c, const hrm_option
    first order. A segment starts as 4 panels, or with medium.feature,
    panels no wider than it (a slab between the first samples is not seen);
    the first is the ray (with a cut-off, a quarter of it), each next sized
-   to start as a quarter of the storage's worth of panels at the density the
-   last one needed, and none past a breakpoint (options.breaks: a slab
+   to start as a quarter of the storage's worth of panels (8 at least) at
+   the density the last one needed (with a cut-off, to end at most a
+   quarter past where the last one's rate of tau reaches it), and none
+   past a breakpoint (options.breaks: a slab
    given only by its edges, between the first samples, had left Tr near 1
    with HRM_OK), sigma_t sampled on each side of it; where
    HRM_SHADOW_PANELS fill, the segment ends at its middle panel (the
@@ -8536,7 +8541,7 @@ static HRM_DEVICE hrm_real hrm__shadow_take(const hrm__panel *p, int np, hrm_rea
 static HRM_DEVICE HRM__CALL void hrm__shadow_run(hrm__ctx *c, const hrm_options *o, hrm_real tau[HRM__CH], hrm__panel *p)
 {
     hrm_real T = c->T, hmin, cap = -HRM_LOG(HRM__TINY), feature = c->m->feature;
-    hrm_real taumin = 0, loose = 1, tau_cut = o->cutoff > 0 ? -HRM_LOG(o->cutoff) : HRM__R(HUGE_VAL);
+    hrm_real taumin = 0, rise, loose = 1, tau_cut = o->cutoff > 0 ? -HRM_LOG(o->cutoff) : HRM__R(HUGE_VAL);
     hrm_real a = 0, len = o->cutoff > 0 ? T / 4 : T;
     int i;
     hmin = 64 * HRM__EPS * (HRM_FABS(c->t0) > T ? HRM_FABS(c->t0) : T);
@@ -8619,14 +8624,30 @@ static HRM_DEVICE HRM__CALL void hrm__shadow_run(hrm__ctx *c, const hrm_options 
         if (c->status != HRM_OK) break;
         if (short_of != HRM_OK) hrm__warn(c, short_of);
         hrm__shadow_take(p, np, tau);
+        rise = taumin;
         for (i = 0; i < HRM__CH; ++i)
             if (i == 0 || tau[i] < taumin) taumin = tau[i];
+        rise = taumin - rise;
         loose = o->cutoff > 0 && taumin > tau_cut - 1 ? o->cutoff / HRM_EXP(-taumin) : 1;
         if (loose < 1) loose = 1;
         /* the next segment sized to start a quarter of the storage's worth
-           of panels, as this one's needed */
-        len = (b - a) * (hrm_real)(HRM_SHADOW_PANELS / 4) / (hrm_real)np;
+           of panels (8 at least), as this one's needed: more than the 4 a
+           segment starts with, so that segments grow again past a dense
+           stretch (with a quarter of 8 or 16 panels they never grew; at 8
+           they only shrank, and a smooth medium on [0, 6] at the default
+           tr_tol had not finished after 20 minutes) */
+        len = (b - a) * (hrm_real)HRM__SHADOW_AIM / (hrm_real)np;
         if (len > 4 * (b - a)) len = 4 * (b - a);
+        /* with a cut-off, no longer than to a quarter past where the
+           thinnest channel's tau reaches it at this segment's rate (never
+           shorter than this segment): the march stops soon after the
+           cut-off, whatever the storage (with 4 096 panels a segment the
+           second had run to t1) */
+        if (rise > 0 && taumin < tau_cut) {
+            hrm_real reach = (tau_cut - taumin) / rise * (b - a) * HRM__R(1.25);
+            if (reach < b - a) reach = b - a;
+            if (len > reach) len = reach;
+        }
         memcpy(p[0].f[0], p[np - 1].f[4], sizeof p[0].f[0]);
         a = b;
         /* every channel below the cut-off, or underflowed: stop */

@@ -98,7 +98,8 @@ run clang-c99-O2        clang -std=c99 -O2 $WARN
 run clang-c99-O2-float  clang -std=c99 -O2 $WARN -DHRM_REAL=float
 run gxx-O2              g++     -x c++ -std=c++11 -O2 $WARN
 run clangxx-O0-float    clang++ -x c++ -std=c++11 -O0 $WARN -DHRM_REAL=float
-run gcc-static-O2       gcc   -std=c99 -O2 $WARN -DHRM_STATIC
+# HRM_STATIC, with the shadow-ray estimator at its least storage (16 panels).
+run gcc-static-O2-shadow16 gcc -std=c99 -O2 $WARN -DHRM_STATIC -DHRM_SHADOW_PANELS=16
 run clang-asan-ubsan    clang -std=c99 -O1 -g $WARN -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 # Channel counts other than the default 3 (the tests loop over HRM_CHANNELS).
 run gcc-c99-O2-ch1      gcc   -std=c99 -O2 $WARN -DHRM_CHANNELS=1
@@ -217,7 +218,7 @@ lim_ok=0
 lim_bad=0
 for d in "-DHRM_CHANNELS=1" "-DHRM_CHANNELS=64" "-DHRM_MAX_BREAKS=1024" "-DHRM_MAX_JUMPS=1" \
          "-DHRM_NS_INTERVALS=8 -DHRM_NS_PANELS=8" "-DHRM_GK_INTERVALS=8 -DHRM_GK_INITIAL=8" \
-         "-DHRM_TAU_PANELS=16" "-DHRM_MAX_DEPTH=8" "-DHRM_SHADOW_PANELS=8"; do
+         "-DHRM_TAU_PANELS=16" "-DHRM_MAX_DEPTH=8" "-DHRM_SHADOW_PANELS=16"; do
     if gcc -std=c99 $WARN $d -fsyntax-only -x c -DHRM_IMPLEMENTATION hrm.h 2> "$B/limits.log"; then
         lim_ok=$((lim_ok + 1))
     else
@@ -226,7 +227,7 @@ for d in "-DHRM_CHANNELS=1" "-DHRM_CHANNELS=64" "-DHRM_MAX_BREAKS=1024" "-DHRM_M
 done
 for d in "-DHRM_CHANNELS=0" "-DHRM_CHANNELS=1024" "-DHRM_MAX_BREAKS=0" "-DHRM_MAX_JUMPS=257" \
          "-DHRM_MAX_LIGHTS=0" "-DHRM_NS_PANELS=65" "-DHRM_GK_INITIAL=129" "-DHRM_TAU_PANELS=8" \
-         "-DHRM_MAX_DEPTH=201" "-DHRM_SHADOW_PANELS=4"; do
+         "-DHRM_MAX_DEPTH=201" "-DHRM_SHADOW_PANELS=8"; do
     if gcc -std=c99 $WARN $d -fsyntax-only -x c -DHRM_IMPLEMENTATION hrm.h 2> "$B/limits.log"; then
         echo "limits: $d compiles"
     elif grep -q "hrm__assert_" "$B/limits.log"; then
