@@ -4873,9 +4873,11 @@ static HRM_DEVICE HRM__CALL void hrm__efit_setup(hrm__ctx *c, const hrm_options 
    nodes q (ni's distinct nodes), integrated over a step of length h (d is
    overwritten with the divided differences); 0 where the top difference
    is within what t's rounding gives it near an equiangular warp's light:
-   node j's t is placed to eps (|t0| + |off|),
-   so the light's 1/r^2 there to 2 |x| / r^2 of that, relative (x = t -
-   delta, r^2 = x^2 + D^2), which the top difference weighs by nz_j.
+   node j's t is placed to eps (|t0| + |off|), so the light's 1/r^2 there
+   to 2 |x| / r^2 of that, relative (x = t - delta, r^2 = x^2 + D^2),
+   which the top difference weighs by nz_j (not under the mixture warp of
+   several lights: with the case below and a second light the pairs took
+   10-25 evaluations without it).
    Verner's seven nodes carry that rounding about 11 times a step's
    increment (a light 1e-11 before t0 = 2, D 1e-13, rtol 1e-4: steps of
    an ulp of t refused for it, 99 679 evaluations, HRM_WARN_MAX_EVALS).
@@ -8518,9 +8520,9 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__finish(hrm__ctx *c, const hrm_option
    to start as a quarter of the storage's worth of panels (8 at least) at
    the density the last one needed (with a cut-off, to end at most a
    quarter past where the last one's rate of tau reaches it), and none
-   past a breakpoint (options.breaks: a slab
-   given only by its edges, between the first samples, had left Tr near 1
-   with HRM_OK), sigma_t sampled on each side of it; where
+   past a breakpoint (options.breaks: a slab given only by its edges,
+   between the first samples, had left Tr near 1 with HRM_OK), sigma_t
+   sampled on each side of it; where
    HRM_SHADOW_PANELS fill, the segment ends at its middle panel (the
    right half's samples given up). The march stops after
    the segment where every channel's Tr falls below the cut-off or
