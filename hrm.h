@@ -4775,10 +4775,6 @@ typedef struct hrm__nodes_info {
        set by hrm__nodes_legendre where m >= 6, in the adaptive pair
        driver's frame; NULL in a fixed step's) */
     const hrm_real *leg;
-    /* 1 / |prod over k != j of (c_j - c_k)|: how the top divided
-       difference weighs node j (hrm__newton_top; set by hrm__nodes_newton
-       in the adaptive pair driver's frame, NULL in a fixed step's) */
-    const hrm_real *nz;
 } hrm__nodes_info;
 
 /* ni->leg (an adaptive pair's kink test, hrm__pair_tail): the four
@@ -4796,24 +4792,11 @@ static HRM_DEVICE HRM__NOINLINE void hrm__nodes_legendre(hrm__nodes_info *ni, hr
     ni->leg = leg;
 }
 
-/* ni->nz (an adaptive pair's check of its top Newton difference). */
-static HRM_DEVICE void hrm__nodes_newton(hrm__nodes_info *ni, hrm_real nz[HRM__MAX_STAGES])
-{
-    int j, k;
-    for (j = 0; j < ni->m; ++j) {
-        hrm_real pr = 1;
-        for (k = 0; k < ni->m; ++k)
-            if (k != j) pr *= ni->c[j] - ni->c[k];
-        nz[j] = 1 / HRM_FABS(pr);
-    }
-    ni->nz = nz;
-}
-
 static HRM_DEVICE HRM__CALL void hrm__nodes_init(const hrm__tableau *tb, hrm__nodes_info *ni)
 {
     int i, j, k;
     ni->m = 0;
-    ni->leg = ni->nz = NULL;
+    ni->leg = NULL;
     for (i = 0; i < tb->s; ++i) {
         for (j = 0; j < ni->m && ni->c[j] != tb->c[i]; ++j) {}
         if (j < ni->m) continue;
@@ -4870,36 +4853,14 @@ static HRM_DEVICE HRM__CALL void hrm__efit_setup(hrm__ctx *c, const hrm_options 
 }
 
 /* The top term of the Newton interpolation series of the values d at the
-   nodes q (ni's distinct nodes), integrated over a step of length h (d is
-   overwritten with the divided differences); 0 where the top difference
-   is within what t's rounding gives it near an equiangular warp's light:
-   node j's t is placed to eps (|t0| + |off|), so the light's 1/r^2 there
-   to 2 |x| / r^2 of that, relative (x = t - delta, r^2 = x^2 + D^2),
-   which the top difference weighs by nz_j (not under the mixture warp of
-   several lights: with the case below and a second light the pairs took
-   10-25 evaluations without it).
-   Verner's seven nodes carry that rounding about 11 times a step's
-   increment (a light 1e-11 before t0 = 2, D 1e-13, rtol 1e-4: steps of
-   an ulp of t refused for it, 99 679 evaluations, HRM_WARN_MAX_EVALS).
-   The rounding at each node, not the worst anywhere on the ray (w_res):
-   with w_res, real top terms far from the light were taken for it
-   (float, Verner 22 rtol off with HRM_OK). */
-static HRM_DEVICE hrm_real hrm__newton_top(const hrm__ctx *c, const hrm__nodes_info *ni, const hrm__pt *const *q,
-                                           hrm_real *d, hrm_real h)
+   distinct nodes, integrated over a step of length h (d is overwritten
+   with the divided differences). */
+static HRM_DEVICE hrm_real hrm__newton_top(const hrm__nodes_info *ni, hrm_real *d, hrm_real h)
 {
-    hrm_real noise = 0;
-    int i, j, m = ni->m;
-    HRM_ASSERT(ni->nz);
-    if (c->warp == HRM_WARP_EQUIANGULAR)
-        for (j = 0; j < m; ++j) {
-            hrm_real x = c->t0 + q[j]->off - c->w_delta, r2 = x * x + c->w_D * c->w_D;
-            hrm_real et = HRM__EPS * (HRM_FABS(c->t0) + HRM_FABS(q[j]->off));
-            if (r2 > 0) noise += 2 * HRM_FABS(x) / r2 * et * HRM_FABS(d[j]) * ni->nz[j];
-        }
-    for (j = 1; j < m; ++j)
-        for (i = m - 1; i >= j; --i) d[i] = (d[i] - d[i - 1]) / (ni->c[i] - ni->c[i - j]);
-    if (HRM_FABS(d[m - 1]) <= noise) return 0;
-    return HRM_FABS(h * d[m - 1]) * ni->W;
+    int i, j;
+    for (j = 1; j < ni->m; ++j)
+        for (i = ni->m - 1; i >= j; --i) d[i] = (d[i] - d[i - 1]) / (ni->c[i] - ni->c[i - j]);
+    return HRM_FABS(h * d[ni->m - 1]) * ni->W;
 }
 
 /* exp(-(tau - delta)) from a node's Tr = exp(-tau): delta, the layer's
@@ -5308,7 +5269,7 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE int hrm__rk_quad(hrm__ctx *c, const hr
                 err[HRM__CH + i] = HRM_FABS(e) >= em[i] ? e : e < 0 ? -em[i] : em[i];
             }
             if (err && both) {
-                hrm_real top = hrm__newton_top(c, ni, qs, d, h) * mass[i] / h;
+                hrm_real top = hrm__newton_top(ni, d, h) * mass[i] / h;
                 both[i] = 0;
                 both[HRM__CH + i] = HRM_FABS(err[HRM__CH + i]) > top ? HRM_FABS(err[HRM__CH + i]) : top;
             }
@@ -5334,7 +5295,7 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE int hrm__rk_quad(hrm__ctx *c, const hr
         for (i = 0; i < HRM__CH; ++i) {
             hrm_real d[HRM__MAX_STAGES], top;
             for (j = 0; j < ni->m; ++j) d[j] = f[j][i];
-            top = hrm__newton_top(c, ni, qs, d, h);
+            top = hrm__newton_top(ni, d, h);
             if (top > HRM_FABS(both[HRM__CH + i])) both[HRM__CH + i] = top;
         }
     }
@@ -5421,13 +5382,11 @@ static HRM_DEVICE HRM__CALL int hrm__rk_stages_in(hrm__ctx *c, const hrm__tablea
            both: the larger of it and the pair's estimate. (At a jump the
            series does not converge, but its top term falls like h, as the
            pair's estimate does: it judges rough steps too.) */
-        const hrm__pt *nq[HRM__MAX_STAGES];
-        for (i = 0; i < ni->m; ++i) nq[i] = sp[ni->stage[i]];
         memcpy(both, err, sizeof(hrm_real) * HRM__NY);
         for (n = HRM__CH; n < HRM__NY; ++n) {
             hrm_real d[HRM__MAX_STAGES], top;
             for (i = 0; i < ni->m; ++i) d[i] = k[ni->stage[i]][n];
-            top = hrm__newton_top(c, ni, nq, d, h);
+            top = hrm__newton_top(ni, d, h);
             if (top > HRM_FABS(both[n])) both[n] = top;
         }
     }
@@ -5791,13 +5750,12 @@ static HRM_DEVICE HRM__CALL void hrm__ivp_adaptive(hrm__ctx *c, const hrm__table
     hrm__pt start, end;
     int cost = hrm__stage_cost(tb), have = 0, after_reject = 0, first = 1, n;
     hrm__nodes_info ni;
-    hrm_real leg[4 * HRM__MAX_STAGES], nz[HRM__MAX_STAGES]; /* ni.leg, ni.nz */
+    hrm_real leg[4 * HRM__MAX_STAGES]; /* ni.leg */
     /* the RTE form: h sigma_t at most the tableau's zmax */
     hrm_real zmax = c->rte ? tb->zmax : 0, hz = HRM__R(HUGE_VAL);
 
     hrm__nodes_init(tb, &ni);
     hrm__nodes_legendre(&ni, leg);
-    hrm__nodes_newton(&ni, nz);
     hrm__ivp_init(c, y);
     /* The first attempt is the pilot that sets the scale. */
     h = h0 > 0 ? h0 : P * HRM__R(0.5) * HRM_POW(c->rtol, 1 / (kk + 1));

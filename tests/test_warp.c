@@ -1493,41 +1493,6 @@ static void wp_equiangular_edges(void)
         CHECK(worst <= 16 * res, "%s (%s): light %g before t0 = 2: relative error %.3g (t's resolution %.2g)",
               hrm_method_name(meth), k % 2 ? "sigma callback" : "constants", back, worst, res);
     }
-    /* The same light at tolerances where t's rounding there (res) stays
-       below 2 rtol (hrm__finish warns past it) and past it: the pairs'
-       check of the top Newton difference over their distinct nodes
-       carries that rounding about 11 times a step's increment for
-       Verner's seven, and had refused steps for it down to an ulp of t
-       (double, rtol 1e-4: 99 679 evaluations, HRM_WARN_MAX_EVALS; 1e-6 to
-       1e-8: 73 614-82 071; float, a light 1e-4 before t0, rtol 1e-4:
-       572). A top difference within what that rounding gives it is no
-       evidence (hrm__newton_top): every pair within 1 000 evaluations
-       (float 400; after the change at most 91 and 49 here), and an answer
-       with HRM_OK within 3 rtol (the contract), a warned one within 16
-       res (as above). Double: the light 1e-11 before t0, rtol 1e-3 to
-       1e-8; float: 1e-4, rtol 1e-2 to 1e-4; the medium as constants and
-       as a sigma_s callback. */
-    for (k = 0; k < 2 * N_METHODS_ALL; ++k) {
-        static const double rtols_d[] = {1e-3, 1e-4, 1e-6, 1e-8}, rtols_f[] = {1e-2, 1e-3, 1e-4};
-        hrm_method meth = every_method[k / 2];
-        int fl = real_is_float(), q, nq = fl ? 3 : 4;
-        double back = fl ? 1e-4 : 1e-11, res = 2 * real_eps() / back;
-        hrm_real t1 = (hrm_real)(2 + (fl ? 1e-2 : 1e-6)), delta = (hrm_real)(2 - back);
-        hrm_real D = (hrm_real)(back / 100);
-        long most = fl ? 400 : 1000;
-        if (!is_pair(meth)) continue;
-        for (q = 0; q < nq; ++q) {
-            double rtol = fl ? rtols_f[q] : rtols_d[q], worst;
-            hrm_result r;
-            hrm_status st;
-            worst = wp_point_solve(&p, &sc, meth, k % 2, sig, (double)delta, (double)D, 2, t1, rtol, &r, &st);
-            CHECK(r.stats.evals <= most, "%s (%s): light %g before t0 = 2, rtol %g: %ld evaluations (at most %ld)",
-                  hrm_method_name(meth), k % 2 ? "sigma callback" : "constants", back, rtol, r.stats.evals, most);
-            CHECK(st > 0 ? worst <= 16 * res : worst <= 3 * rtol,
-                  "%s (%s): light %g before t0 = 2, rtol %g: relative error %.3g (status %d, t's resolution %.2g)",
-                  hrm_method_name(meth), k % 2 ? "sigma callback" : "constants", back, rtol, worst, (int)st, res);
-        }
-    }
     /* Emission under a light's warp: sigma_t 2.97 (sigma_a 2.2) with Le, a
        light 0.0067 from the ray at 6.85 on [6.136, 9.473]. The emission
        past the light's foot lies where dt/du grows 6 000-fold within nested
