@@ -3057,6 +3057,13 @@ static HRM_DEVICE HRM__CALL void hrm__tau_reach(hrm__ctx *c, hrm_real reach, hrm
     }
 }
 
+/* Boole's rule over a width h on the samples f[0], f[s], .., f[4 s] of
+   channel i (Abramowitz and Stegun 25.4.14). */
+static HRM_DEVICE hrm_real hrm__boole(const hrm_real (*f)[HRM__CH], int s, int i, hrm_real h)
+{
+    return h / 90 * (7 * (f[0][i] + f[4 * s][i]) + 32 * (f[s][i] + f[3 * s][i]) + 12 * f[2 * s][i]);
+}
+
 /* hrm__tau_reach on sigma callbacks where no transmittance layer is held
    (tau from a fixed-step rule's own nodes, or the RTE form's state): a
    march of panels, each Boole's rule on its halves checked by Boole's on
@@ -3069,13 +3076,6 @@ static HRM_DEVICE HRM__CALL void hrm__tau_reach(hrm__ctx *c, hrm_real reach, hrm
    reach found that early is not sampled. Where the thinnest channel's tau
    reaches `reach`, x is found on the broken line through the panel's
    ends and middle (a panel taken at the floor: its end). */
-/* Boole's rule over a width h on the samples f[0], f[s], .., f[4 s] of
-   channel i (Abramowitz and Stegun 25.4.14). */
-static HRM_DEVICE hrm_real hrm__boole(const hrm_real (*f)[HRM__CH], int s, int i, hrm_real h)
-{
-    return h / 90 * (7 * (f[0][i] + f[4 * s][i]) + 32 * (f[s][i] + f[3 * s][i]) + 12 * f[2 * s][i]);
-}
-
 static HRM_DEVICE HRM__CALL void hrm__reach_march(hrm__ctx *c, hrm_real end, hrm_real reach, hrm_real *x,
                                                   hrm_real *tx, hrm_real *lowest)
 {
@@ -7242,7 +7242,7 @@ HRM__DEF HRM_DEVICE hrm_options hrm_default_options(hrm_method method)
     return o;
 }
 
-/* A panel of the shadow-ray estimator (hrm__shadow_march). */
+/* A panel of the shadow-ray estimator (hrm__shadow_run). */
 typedef struct hrm__panel {
     hrm_real a, h;
     hrm_real f[5][HRM__CH]; /* sigma_t at a + h (0, 1/4, 1/2, 3/4, 1) */
