@@ -271,13 +271,13 @@
    (or hrm_solve) for its shadow ray. Randomness (Monte Carlo, jitter) comes
    from options.seed alone: the same inputs give the same answer.
    Stack (tests/stack.c, worst case, double, 3 channels, gcc/clang -O2):
-   fixed-step methods 5.3-7.9 KiB, 9.7-11 with the transmittance layer
-   (11.6-12.8 with find_jumps 1); pairs 22-24; Gauss-Kronrod 82-85, nested
-   Simpson 92-95; the shadow-ray estimator 12; 2.2 times that with 8
-   channels, half in float, at most 48 (1 + HRM_CHANNELS) KiB; twice with a
-   shadow ray in Li. options.workspace (hrm_workspace_size bytes, aligned to
-   16, one a thread) holds the layer, adaptive storage, estimator panels and
-   context: same answers, fixed-step 5.8 KiB, every method 19, 36 nested.
+   fixed-step 5-7.5 KiB, 9.5-10.5 with the transmittance layer (8.8-10 with
+   at most 7 breakpoints, 11.5-12.5 with find_jumps 1); pairs 22-23; Gauss-
+   Kronrod 79-82, nested Simpson 89-92; the shadow-ray estimator 11.5; 2.2
+   times that with 8 channels, half in float, at most 48 (1 + HRM_CHANNELS)
+   KiB; twice with a shadow ray in Li. options.workspace (hrm_workspace_size
+   bytes, aligned to 16, one a thread) holds layer, adaptive storage, panels,
+   context: same answers; fixed-step 5 KiB, every method 18.5, 35 nested.
    GPU kernels: under nvcc or hipcc every function is __host__ __device__
    (HRM_DEVICE; define it to override) and the tables exist on both sides.
    Build the medium in the kernel (callbacks: device functions), give each
@@ -7805,12 +7805,12 @@ static HRM_DEVICE hrm_real hrm__share(int steps, hrm_real a, hrm_real b, hrm_rea
 /* The pieces between breakpoints, each solved on its own, with their
    tables in t (the caller's workspace, or hrm__solve_broken's frame). */
 static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__solve_broken_in(hrm__ctx *c, const hrm_options *o,
-                                                                    hrm_real y[HRM__NY], hrm__piece_tab *t)
+                                                                    hrm_real y[HRM__NY], hrm_real *P, int *N)
 {
     const hrm__method_info *mi = &hrm__methods[o->method];
-    hrm_real *P = t->P, pa = c->pa, pb = c->pb;
+    hrm_real pa = c->pa, pb = c->pb;
     hrm_real yk[HRM__NY], err[HRM__CH], acc[HRM__CH];
-    int n = c->nbrk + 1, *N = t->N, k, i, fixed;
+    int n = c->nbrk + 1, k, i, fixed;
     long max_evals = c->max_evals;
     /* a piece's tolerance is of its own L: a piece that missed it (a step
        at h_min, or its estimates' sum) warns only where the pieces'
@@ -7907,17 +7907,28 @@ static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__solve_broken_in(hrm__ctx *c,
 }
 
 /* The tables in a frame of their own without a workspace, which a ray
-   without breakpoints never holds. */
+   without breakpoints never holds: for at most HRM__PIECES_FEW pieces
+   a frame of that size (104 bytes instead of 792), else for every
+   breakpoint the options may give. */
+#define HRM__PIECES_FEW 8
+static HRM_DEVICE HRM__NOINLINE void hrm__solve_broken_few(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM__NY])
+{
+    hrm_real P[HRM__PIECES_FEW + 1];
+    int N[HRM__PIECES_FEW];
+    hrm__solve_broken_in(c, o, y, P, N);
+}
+
 static HRM_DEVICE HRM__NOINLINE void hrm__solve_broken_on_stack(hrm__ctx *c, const hrm_options *o,
                                                                hrm_real y[HRM__NY])
 {
     hrm__piece_tab t;
-    hrm__solve_broken_in(c, o, y, &t);
+    hrm__solve_broken_in(c, o, y, t.P, t.N);
 }
 
 static HRM_DEVICE void hrm__solve_broken(hrm__ctx *c, const hrm_options *o, hrm_real y[HRM__NY])
 {
-    if (c->pieces) hrm__solve_broken_in(c, o, y, c->pieces);
+    if (c->pieces) hrm__solve_broken_in(c, o, y, c->pieces->P, c->pieces->N);
+    else if (c->nbrk + 1 <= HRM__PIECES_FEW) hrm__solve_broken_few(c, o, y);
     else hrm__solve_broken_on_stack(c, o, y);
 }
 
@@ -8196,7 +8207,7 @@ static HRM_DEVICE int hrm__scan_layout(const hrm__ctx *c, hrm_real b[HRM__SCAN_Q
     return nq;
 }
 
-static HRM_DEVICE HRM__CALL void hrm__scan_medium(hrm__ctx *c)
+static HRM_DEVICE HRM__CALL HRM__NOINLINE void hrm__scan_medium(hrm__ctx *c)
 {
     hrm_real sa[HRM__CH], sx[HRM__CH], pb[HRM__SCAN_Q + 1];
     hrm_real a = 0, fa = hrm__sigma_sum(c, 0, 0, sa), tau[HRM__CH], least;

@@ -633,8 +633,9 @@ static int st_layer(const st_case *k)
 static void st_table(void)
 {
     static st_case cases[ST_MAX_CASES]; /* (static: large; written once, here) */
-    st_worst row[ST_ROWS], own[ST_ROWS], lay[ST_ROWS]; /* the fixed-step methods: tau not from the layer
-                                                         (own), from it without the scan (lay) */
+    st_worst row[ST_ROWS], own[ST_ROWS], lay[ST_ROWS], few[ST_ROWS]; /* the fixed-step methods: tau
+                                                         not from the layer (own), from it without the scan
+                                                         (lay), and that with 2 breakpoints at most (few) */
     st_case nested;
     char desc[256], name[64];
     long largest = 0, status[3] = {0, 0, 0}, u, base;
@@ -654,7 +655,7 @@ static void st_table(void)
         row[r].bytes = 0;
         row[r].at = -1;
         row[r].cases = 0;
-        own[r] = lay[r] = row[r];
+        own[r] = lay[r] = few[r] = row[r];
     }
     for (i = 0; i < n; ++i) {
         const st_case *k = &cases[i];
@@ -678,7 +679,10 @@ static void st_table(void)
         else st_keep(&row[k->method == HRM_METHOD_DEFAULT ? ST_ROW_EST
                           : k->medium == ST_MED_COUPLED ? ST_ROW_TR_COUPLED : ST_ROW_TR], u, i);
         if (!k->tr_only && !st_adaptive(k->method) && !st_layer(k)) st_keep(&own[k->method], u, i);
-        if (!k->tr_only && !st_adaptive(k->method) && st_layer(k) && k->jumps != 1) st_keep(&lay[k->method], u, i);
+        if (!k->tr_only && !st_adaptive(k->method) && st_layer(k) && k->jumps != 1) {
+            st_keep(&lay[k->method], u, i);
+            if (k->breaks < 2) st_keep(&few[k->method], u, i);
+        }
         if (!k->tr_only && k->method == HRM_GAUSS_KRONROD)
             st_keep(&row[ST_ROW_GK + (k->gk_mode == HRM_GK_LOCAL) + 2 * (k->gk_rule == HRM_GK_K7)], u, i);
     }
@@ -701,17 +705,17 @@ static void st_table(void)
            channels, double, gcc and clang -O2) wherever their tau is not
            the decoupled layer's: from their own nodes, the stream or a
            closed form (the distance warp's reach on sigma callbacks
-           marched without the layer, hrm__reach_march). Measured (bytes,
-           gcc; clang): the rectangle rule and Monte Carlo 5 464; 6 144,
-           the analytic march 5 376; 6 592, Euler 6 816; 7 784, Simpson
-           6 440; 7 704, RK4 and Adams-Bashforth 7 328; 8 096. With the
-           layer (the default under a warp for Simpson, RK4 and Adams-
-           Bashforth, and with a fit), in a fixed-step rule's frame of 4
-           panels, 2 panels' coefficients and 4 checkpoints, within 11 KiB
-           (gcc): 9 960 and 10 264; 11 096 and 11 192 (13 176 and 13 640
-           with 8 panels, the adaptive methods' 16 checkpoints and the
-           scan's storage, which the frame holds only with
-           options.find_jumps 1: 11 864 and 12 168). */
+           marched without the layer, hrm__reach_march). Measured (bytes
+           as the table rounds them, gcc; clang): the rectangle rule and
+           Monte Carlo 5 376; 5 632, the analytic march 5 120; 6 144,
+           Euler 6 656; 7 424, Simpson 6 144; 7 424, RK4 and Adams-
+           Bashforth 7 168; 7 680. With the layer (the default under a
+           warp for Simpson, RK4 and Adams-Bashforth, and with a fit), in
+           a fixed-step rule's frame of 4 panels, 2 panels' coefficients
+           and 4 checkpoints, within 11 KiB (gcc): Simpson 9 728, RK4 and
+           Adams-Bashforth 9 984; clang 10 752 (with 2 breakpoints at
+           most, the pieces' tables in a frame of 8 pieces: 8 960 and
+           9 472; clang 9 984 and 10 240). */
         if (r < ST_ROW_TR && own[r].at >= 0) {
             st_describe(&cases[own[r].at], desc, sizeof desc);
             NOTE("  %-20s %8ld  tau not from the layer: %s", "", st_round(own[r].bytes), desc);
@@ -727,6 +731,10 @@ static void st_table(void)
                 CHECK(lay[r].bytes <= 11 * 1024, "%s: %ld bytes of stack without a workspace, tau from the layer "
                       "without the scan, within 11 KiB", name, lay[r].bytes);
 #endif
+        }
+        if (r < ST_ROW_TR && few[r].at >= 0) {
+            st_describe(&cases[few[r].at], desc, sizeof desc);
+            NOTE("  %-20s %8ld  the same, 2 breakpoints at most: %s", "", st_round(few[r].bytes), desc);
         }
     }
     NOTE("the largest: %ld bytes (%ld rounded up), STACK_LIMIT %ld", largest, st_round(largest), STACK_LIMIT);
