@@ -1190,6 +1190,52 @@ static void ad_workspace(void)
                         }
     CHECK(runs >= 300 && diff == 0, "workspace: %d solves identical to the stack's, %d differ", runs - diff, diff);
     {
+        /* Breakpoints: without a workspace a ray of at most 8 pieces
+           keeps the pieces' tables in a frame of 8, a longer one in a
+           frame for every breakpoint the options may give; a workspace
+           holds the latter. 3, 7 (8 pieces), 8 and 12 breakpoints over
+           [0, 6], every method, sigma callbacks, the hard Li: the same
+           answers, stats and jumps on the stack as in the workspace. */
+        static const int counts[4] = {3, 7, 8, 12};
+        hrm_real brk[12];
+        int runs_b = 0, diff_b = 0, k, q;
+        for (mi = 0; mi < N_METHODS_ALL; ++mi)
+            for (q = 0; q < 4; ++q) {
+                ad_ws_scene sc;
+                hrm_medium m;
+                hrm_options o = hrm_default_options(every_method[mi]);
+                hrm_result plain, in_ws;
+                hrm_status s1, s2;
+                if (counts[q] > HRM_MAX_BREAKS) continue;
+                memset(&sc, 0, sizeof sc);
+                memset(&m, 0, sizeof m);
+                sc.hard = 1;
+                m.user = &sc;
+                m.Li = ad_ws_li;
+                m.sigma = ad_ws_sig;
+                for (k = 0; k < counts[q]; ++k) brk[k] = (hrm_real)(6.0 * (k + 1) / (counts[q] + 1) + 0.01);
+                o.breaks = brk;
+                o.nbreaks = counts[q];
+                if (!is_adaptive(every_method[mi])) o.steps = 32;
+                else o.rtol = (hrm_real)1e-4;
+                s1 = hrm_solve(&m, 0, 6, &o, &plain);
+                if (s1 == HRM_ERR_BAD_OPTION) continue;
+                o.workspace = ws;
+                o.workspace_size = hrm_workspace_size(&o);
+                memset(ws, 0xA5, o.workspace_size);
+                s2 = hrm_solve(&m, 0, 6, &o, &in_ws);
+                ++runs_b;
+                if (s1 != s2 || !ad_ws_same(&plain, &in_ws, 0)) {
+                    ++diff_b;
+                    CHECK(0, "%s, %d breakpoints: the workspace changed the answer (status %d/%d, L %.17g/%.17g)",
+                          hrm_method_name(every_method[mi]), counts[q], s1, s2, (double)plain.L[0],
+                          (double)in_ws.L[0]);
+                }
+            }
+        CHECK(runs_b >= 4 * 12 && diff_b == 0, "workspace, 3-12 breakpoints: %d solves identical to the stack's, %d differ",
+              runs_b - diff_b, diff_b);
+    }
+    {
         /* A ray of more transmittance panels than the stack's table holds
            (32; a workspace's 128): sigma = 0.3 max(0, sin 10 t) over 8,
            25 kinks, far more than 32 panels, which the worst-first rules
