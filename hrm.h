@@ -4055,8 +4055,13 @@ static HRM_DEVICE void hrm__medium_at(hrm__ctx *c, hrm_real s, hrm_real s_raw, h
            against twice the samples); hrm__dispatch samples it there and
            solves again */
         tp = &c->tau->tab[c->tau->hit % c->tau->ntab];
-        /* (not at a breakpoint, whose sample is on the other panel's side) */
-        for (i = 0; i < HRM__CH && c->tau->count > 0 && !c->layer_miss && s == s_raw; ++i) {
+        /* (not at a breakpoint, whose sample is on the other panel's side;
+           not at t0, where the first panel sampled sigma_t itself and
+           hrm__tau_at names no panel: the check had read the panel asked
+           for last, a dense start against a thin panel further on, and
+           solved the ray again for it, Gauss-Kronrod 167 -> 339
+           evaluations) */
+        for (i = 0; i < HRM__CH && c->tau->count > 0 && !c->layer_miss && s == s_raw && pt->off > 0; ++i) {
             hrm_real lower = st_known ? st[i] : sa[i] > ss[i] ? sa[i] : ss[i];
             if (lower > HRM__R(1.5) * tp->smax[i] + HRM__R(1e-30)) {
                 c->layer_miss = 1;
