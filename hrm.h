@@ -2523,6 +2523,14 @@ static HRM_DEVICE void hrm__tau_learn(hrm__tau *L, hrm_real x, const hrm_real s[
     hrm__tau_insert(L, x, s, 1);
 }
 
+/* Whether x is a sample the layer was taught (hrm__tau_learn). */
+static HRM_DEVICE int hrm__tau_taught(const hrm__tau *L, hrm_real x)
+{
+    int k;
+    for (k = 0; k < L->nmem && L->mem_x[k] < x; ++k) {}
+    return k < L->nmem && L->mem_x[k] == x && L->mem_keep[k];
+}
+
 /* Remember the largest and the smallest sigma_t (summed over channels)
    that a rejected panel [a, b] sampled inside it: a thin layer or a hole
    it saw. */
@@ -4063,7 +4071,12 @@ static HRM_DEVICE void hrm__medium_at(hrm__ctx *c, hrm_real s, hrm_real s_raw, h
            evaluations) */
         for (i = 0; i < HRM__CH && c->tau->count > 0 && !c->layer_miss && s == s_raw && pt->off > 0; ++i) {
             hrm_real lower = st_known ? st[i] : sa[i] > ss[i] ? sa[i] : ss[i];
-            if (lower > HRM__R(1.5) * tp->smax[i] + HRM__R(1e-30)) {
+            /* (a node the layer was taught after such a miss: its panel's
+               fit held the sample within tau's tolerance, weighed by Tr
+               there, and a panel that did not sample above it says
+               nothing new; the solve had been repeated 8 times for it and
+               warned, a cloud's edge deep behind its core) */
+            if (lower > HRM__R(1.5) * tp->smax[i] + HRM__R(1e-30) && !hrm__tau_taught(c->tau, pt->off)) {
                 c->layer_miss = 1;
                 c->miss_off = pt->off;
                 c->miss_s = s;

@@ -2446,6 +2446,58 @@ static void br_dense_start(void)
     }
 }
 
+/* A wisp behind a dense core: sigma_t 40 on [0, 1), 0 after but 0.05
+   on the wisp, albedo 0.8, Li = 1, on [0, 3]: Tr past the core e^-40, so
+   L = 0.8 (1 - e^-40) to 1e-17. */
+typedef struct br_wisp {
+    double x0, w;
+} br_wisp;
+
+static void br_wisp_sigma(void *u, hrm_real t, hrm_real sa[NCH], hrm_real ss[NCH])
+{
+    const br_wisp *p = (const br_wisp *)u;
+    double x = (double)t;
+    br_split_sigma(x < 1 ? 40 : x >= p->x0 && x < p->x0 + p->w ? 0.05 : 0, 0.8, sa, ss);
+}
+
+/* A node in the wisp that the layer's panel (all its samples 0) did not
+   sample is taught to the layer and the ray solved again; the layer's
+   fit then holds the sample within tau's tolerance weighed by Tr there
+   (e^-40), its panel still samples nothing above 0, and the node is not
+   a miss again (it had been: 8 repeats, then HRM_WARN_TOLERANCE on an
+   answer 4e-6 off; nested Simpson 315 evaluations, Gauss-Kronrod 612 and
+   621, at rtol 1e-3). */
+static void br_wisp_behind(void)
+{
+    static const double x0[2] = {1.9, 1.5}, w[2] = {0.05, 0.02};
+    static const hrm_method ms[2] = {HRM_NESTED_SIMPSON, HRM_GAUSS_KRONROD};
+    int mi, q, split, c;
+    for (mi = 0; mi < 2; ++mi)
+        for (q = 0; q < 2; ++q)
+            for (split = 0; split < 2; ++split) {
+                br_wisp wisp;
+                br_via via;
+                hrm_medium m;
+                hrm_options o = hrm_default_options(ms[mi]);
+                hrm_result r;
+                hrm_status st;
+                wisp.x0 = x0[q];
+                wisp.w = w[q];
+                memset(&m, 0, sizeof m);
+                br_sigma_form(&m, &via, br_wisp_sigma, &wisp, split);
+                m.Li = spectrum_one;
+                o.rtol = (hrm_real)1e-3;
+                st = hrm_solve(&m, 0, 3, &o, &r);
+                CHECK_INT(st, HRM_OK, "wisp [%g, %g) behind a core, %s, %s: status", x0[q], x0[q] + w[q],
+                          hrm_method_name(ms[mi]), split ? "sigma_a, sigma_s" : "sigma");
+                for (c = 0; c < NCH; ++c)
+                    CHECK_REL(r.L[c], 0.8 * (1 - exp(-40.0)), 3e-3, "wisp behind a core, %s: L within 3 rtol",
+                              hrm_method_name(ms[mi]));
+                CHECK(r.stats.evals <= 250, "wisp [%g, %g) behind a core, %s: %ld evaluations, at most 250 (measured "
+                      "34-207)", x0[q], x0[q] + w[q], hrm_method_name(ms[mi]), r.stats.evals);
+            }
+}
+
 void breaks_tests(void)
 {
     RUN_GROUP(br_bad_lists);
@@ -2471,4 +2523,5 @@ void breaks_tests(void)
     RUN_GROUP(br_dark_foot);
     RUN_GROUP(br_mix_inverse);
     RUN_GROUP(br_dense_start);
+    RUN_GROUP(br_wisp_behind);
 }
