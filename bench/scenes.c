@@ -1143,6 +1143,83 @@ static void cloud_print(FILE *out, const void *params)
     fprintf(out, "\n");
 }
 
+/* ------------------------------------------------------------------------ */
+/* dense: a dense smooth front at the start of a long ray, from callbacks:  */
+/* sigma_t(s) = k_c (base + amp exp(-(s / w)^2)) on [0, 30] (w = 0.2: the   */
+/* front holds 1.8 of the ray's 3.3 optical depths), albedo 0.8, sky light. */
+/* tau(0, s) = k_c (base s + amp w (sqrt(pi) / 2) erf(s / w)).              */
+/* ------------------------------------------------------------------------ */
+
+typedef struct dense_params {
+    double base, amp, w, albedo;
+    double k[3]; /* per channel */
+    double E[3]; /* Li */
+} dense_params;
+
+static const dense_params dense_scene = {0.05, 10.0, 0.2, 0.8, {1.0, 0.9, 0.8}, {2.0, 1.5, 1.0}};
+
+static double dense_sigma_t(const dense_params *p, double s)
+{
+    double x = s / p->w;
+    return p->base + p->amp * exp(-x * x);
+}
+
+static void dense_sigma_a(void *user, hrm_real t, hrm_real out[HRM_CHANNELS])
+{
+    const dense_params *p = BENCH_PARAMS(dense_params, user);
+    double v = dense_sigma_t(p, (double)t);
+    int c;
+    bench_count(user, BENCH_CB_SIGMA_A, t);
+    for (c = 0; c < 3; ++c) out[c] = (hrm_real)((1 - p->albedo) * p->k[c] * v);
+}
+
+static void dense_sigma_s(void *user, hrm_real t, hrm_real out[HRM_CHANNELS])
+{
+    const dense_params *p = BENCH_PARAMS(dense_params, user);
+    double v = dense_sigma_t(p, (double)t);
+    int c;
+    bench_count(user, BENCH_CB_SIGMA_S, t);
+    for (c = 0; c < 3; ++c) out[c] = (hrm_real)(p->albedo * p->k[c] * v);
+}
+
+static void dense_li(void *user, hrm_real t, hrm_real out[HRM_CHANNELS])
+{
+    const dense_params *p = BENCH_PARAMS(dense_params, user);
+    int c;
+    bench_count(user, BENCH_CB_LI, t);
+    for (c = 0; c < 3; ++c) out[c] = (hrm_real)(p->E[c] * BENCH_PHASE);
+}
+
+static void dense_build(const void *params, hrm_medium *m)
+{
+    (void)params;
+    m->sigma_a = dense_sigma_a;
+    m->sigma_s = dense_sigma_s;
+    m->Li = dense_li;
+}
+
+static void dense_integrand(const void *params, long double t0, long double s,
+                            long double out[HRM_CHANNELS])
+{
+    const dense_params *p = (const dense_params *)params;
+    long double w = LD(p->w), x = s / w, x0 = t0 / w;
+    long double sg = LD(p->base) + LD(p->amp) * expl(-x * x);
+    long double tau = LD(p->base) * (s - t0) + LD(p->amp) * w * 0.886226925452758013649083741671L * (erfl(x) - erfl(x0));
+    int c;
+    for (c = 0; c < 3; ++c)
+        out[c] = expl(-LD(p->k[c]) * tau) * LD(p->albedo) * LD(p->k[c]) * sg * LD(p->E[c]) * BENCH_PHASE_L;
+}
+
+static void dense_print(FILE *out, const void *params)
+{
+    const dense_params *p = (const dense_params *)params;
+    fprintf(out, "  callbacks only: sigma_t(s) = k (%g + %g exp(-(s/%g)^2)), ", p->base, p->amp, p->w);
+    bench_print_vec(out, "k", p->k);
+    fprintf(out, ", albedo %g\n  Li = E p, ", p->albedo);
+    bench_print_vec(out, "E", p->E);
+    fprintf(out, "\n");
+}
+
 const bench_scene bench_scenes[] = {
     {.name = "directional",
      .description = "homogeneous medium, directional light whose path through the medium grows along the ray",
@@ -1203,6 +1280,11 @@ const bench_scene bench_scenes[] = {
      .params = &cloud_scene, .t0 = 0.0, .t1 = 10.0, .smooth = 1,
      .natural_warp = BENCH_WARP_DISTANCE, .print_params = cloud_print, .build = cloud_build,
      .integrand = cloud_integrand, .ref_panel = 0.005L},
+    {.name = "dense",
+     .description = "a dense smooth front at the start of a long ray (sigma_t x200 within 0.2 of t0, [0, 30]) from callbacks, sky light",
+     .params = &dense_scene, .t0 = 0.0, .t1 = 30.0, .smooth = 1,
+     .natural_warp = BENCH_WARP_DISTANCE, .print_params = dense_print, .build = dense_build,
+     .integrand = dense_integrand, .ref_panel = 0.025L},
 };
 
 const int bench_scene_count = (int)(sizeof bench_scenes / sizeof bench_scenes[0]);
