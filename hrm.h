@@ -4065,17 +4065,17 @@ static HRM_DEVICE void hrm__medium_at(hrm__ctx *c, hrm_real s, hrm_real s_raw, h
         tp = &c->tau->tab[c->tau->hit % c->tau->ntab];
         /* (not at a breakpoint, whose sample is on the other panel's side;
            not at t0, where the first panel sampled sigma_t itself and
-           hrm__tau_at names no panel: the check had read the panel asked
-           for last, a dense start against a thin panel further on, and
-           solved the ray again for it, Gauss-Kronrod 167 -> 339
-           evaluations) */
+           hrm__tau_at names no panel: the panel asked for last, read
+           instead, holds a dense start against a thin panel further on
+           and solves the ray twice, Gauss-Kronrod 339 evaluations for
+           173) */
         for (i = 0; i < HRM__CH && c->tau->count > 0 && !c->layer_miss && s == s_raw && pt->off > 0; ++i) {
             hrm_real lower = st_known ? st[i] : sa[i] > ss[i] ? sa[i] : ss[i];
-            /* (a node the layer was taught after such a miss: its panel's
-               fit held the sample within tau's tolerance, weighed by Tr
-               there, and a panel that did not sample above it says
-               nothing new; the solve had been repeated 8 times for it and
-               warned, a cloud's edge deep behind its core) */
+            /* (nor a node the layer was taught after such a miss: its
+               panel's fit holds the sample within tau's tolerance, weighed
+               by Tr there, and a panel that did not sample above it says
+               nothing new; a wisp behind a cloud's core would otherwise
+               repeat the solve 8 times and warn) */
             if (lower > HRM__R(1.5) * tp->smax[i] + HRM__R(1e-30) && !hrm__tau_taught(c->tau, pt->off)) {
                 c->layer_miss = 1;
                 c->miss_off = pt->off;
