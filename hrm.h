@@ -8662,16 +8662,16 @@ static HRM_DEVICE HRM__CALL void hrm__shadow_run(hrm__ctx *c, const hrm_options 
         /* the next segment sized to start a quarter of the storage's worth
            of panels (8 at least), as this one's needed: more than the 4 a
            segment starts with, so that segments grow again past a dense
-           stretch (with a quarter of 8 or 16 panels they never grew; at 8
-           they only shrank, and a smooth medium on [0, 6] at the default
-           tr_tol had not finished after 20 minutes) */
+           stretch (aiming at a quarter of 8 or 16 panels, segments never
+           grow and at 8 only shrink: a smooth medium on [0, 6] at the
+           default tr_tol does not finish in 20 minutes) */
         len = (b - a) * (hrm_real)HRM__SHADOW_AIM / (hrm_real)np;
         if (len > 4 * (b - a)) len = 4 * (b - a);
         /* with a cut-off, no longer than to a quarter past where the
            thinnest channel's tau reaches it at this segment's rate (never
            shorter than this segment): the march stops soon after the
-           cut-off, whatever the storage (with 4 096 panels a segment the
-           second had run to t1) */
+           cut-off, whatever the storage (sized by the storage alone, with
+           4 096 panels a segment the second runs to t1) */
         if (rise > 0 && taumin < tau_cut) {
             hrm_real reach = (tau_cut - taumin) / rise * (b - a) * HRM__R(1.25);
             if (reach < b - a) reach = b - a;
