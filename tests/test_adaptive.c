@@ -1671,6 +1671,138 @@ static void ad_sliver(void)
               runs);
 }
 
+/* A point light behind a dense front at the camera: sigma_t k_c (0.138
+   + 16.7 exp(-(t / 0.45)^2)) (k_c = 1 - c / 10, the front 6.7 optical
+   depths), albedo 0.63, Li = 0.485 / (0.43^2 + (t - 17)^2) on [0, 19.88]
+   (L about 1.1e-3, half of it from the front, where Li is 1.7e-3). The
+   light's warp squeezes the front into 2e-4 of u; Bogacki-Shampine's
+   steps about the light's foot and the ray's end missed 2-9 times its
+   calibrated estimate at rtol 1e-4 (3.8 rtol off with HRM_OK; found by
+   a random search of dense fronts under lights' warps). Every pair, no
+   warp and the equiangular one, sigma as one callback, as sigma_a and
+   sigma_s, and with the exact Tr as the host's callback: HRM_OK within 3
+   rtol. Reference: 4000 panels of 8-point Gauss-Legendre with tau in
+   closed form (the integrand's narrowest scale 0.43, a panel 0.005). */
+typedef struct ad_front {
+    int cb; /* counted calls */
+} ad_front;
+
+static double ad_front_tau(double t)
+{
+    return 0.138 * t + 16.7 * 0.45 * 0.886226925452758 * erf(t / 0.45);
+}
+
+static double ad_front_k(int c) { return 1 - 0.1 * (double)(c % 8); }
+
+static void ad_front_sigma(void *u, hrm_real t, hrm_real sa[NCH], hrm_real ss[NCH])
+{
+    double x = (double)t / 0.45, v = 0.138 + 16.7 * exp(-x * x);
+    int c;
+    ((ad_front *)u)->cb++;
+    for (c = 0; c < NCH; ++c) {
+        sa[c] = (hrm_real)(0.37 * ad_front_k(c) * v);
+        ss[c] = (hrm_real)(0.63 * ad_front_k(c) * v);
+    }
+}
+
+static void ad_front_sa(void *u, hrm_real t, hrm_real out[NCH])
+{
+    hrm_real ss[NCH];
+    ad_front_sigma(u, t, out, ss);
+}
+
+static void ad_front_ss(void *u, hrm_real t, hrm_real out[NCH])
+{
+    hrm_real sa[NCH];
+    ad_front_sigma(u, t, sa, out);
+}
+
+static void ad_front_tr(void *u, hrm_real ta, hrm_real tb, hrm_real out[NCH])
+{
+    double d = ad_front_tau((double)tb) - ad_front_tau((double)ta);
+    int c;
+    (void)u;
+    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)exp(-ad_front_k(c) * d);
+}
+
+static void ad_front_li(void *u, hrm_real t, hrm_real out[NCH])
+{
+    double d = (double)t - 17;
+    int c;
+    (void)u;
+    for (c = 0; c < NCH; ++c) out[c] = (hrm_real)(0.485 / (0.43 * 0.43 + d * d));
+}
+
+typedef struct ad_front_ref {
+    int c;
+} ad_front_ref;
+
+static double ad_front_integrand(const void *ctx, double t)
+{
+    int c = ((const ad_front_ref *)ctx)->c;
+    double x = t / 0.45, d = t - 17, k = ad_front_k(c);
+    return 0.63 * k * (0.138 + 16.7 * exp(-x * x)) * 0.485 / (0.43 * 0.43 + d * d) * exp(-k * ad_front_tau(t));
+}
+
+static void ad_pair_front(void)
+{
+    static const double rts[2] = {1e-3, 1e-4};
+    double ref[NCH], worst = 0;
+    int mi, form, w, k, c, runs = 0, ok = 0;
+    for (c = 0; c < NCH; ++c) {
+        ad_front_ref x;
+        x.c = c;
+        ref[c] = gl_integrate(ad_front_integrand, &x, 0, 19.88, 4000, 8, 0, 0);
+    }
+    for (mi = 0; mi < N_METHODS_ALL; ++mi) {
+        if (!is_pair(every_method[mi])) continue;
+        for (form = 0; form < 3; ++form)
+            for (w = 0; w < 2; ++w)
+                for (k = 0; k < 2; ++k) {
+                    ad_front u;
+                    hrm_medium m;
+                    hrm_options o = hrm_default_options(every_method[mi]);
+                    hrm_result r;
+                    hrm_status st;
+                    memset(&m, 0, sizeof m);
+                    u.cb = 0;
+                    m.user = &u;
+                    m.sigma = form == 1 ? NULL : ad_front_sigma;
+                    m.sigma_a = form == 1 ? ad_front_sa : NULL;
+                    m.sigma_s = form == 1 ? ad_front_ss : NULL;
+                    m.transmittance = form == 2 ? ad_front_tr : NULL;
+                    m.Li = ad_front_li;
+                    o.rtol = (hrm_real)rts[k];
+                    if (w) {
+                        o.warp.kind = HRM_WARP_EQUIANGULAR;
+                        o.warp.delta = 17;
+                        o.warp.D = (hrm_real)0.43;
+                    }
+                    st = hrm_solve(&m, 0, (hrm_real)19.88, &o, &r);
+                    CHECK(st >= 0, "front and light, %s, form %d, warp %d, rtol %g: status %d",
+                          hrm_method_name(every_method[mi]), form, w, rts[k], st);
+                    runs++;
+                    ok += st == HRM_OK;
+                    for (c = 0; c < NCH; ++c) {
+                        double e = fabs((double)r.L[c] - ref[c]) / (rts[k] * ref[c]);
+                        CHECK(st != HRM_OK || e <= 3, "front and light, %s, form %d, warp %d, rtol %g, channel %d: "
+                              "HRM_OK %.2f rtol off", hrm_method_name(every_method[mi]), form, w, rts[k], c, e);
+                        if (st == HRM_OK && e > worst) worst = e;
+                        if (verbose() && e > 1)
+                            printf("    front and light, %s, form %d, warp %d, rtol %g, channel %d: status %d, %.2f "
+                                   "rtol, %ld evaluations\n", hrm_method_name(every_method[mi]), form, w, rts[k], c,
+                                   st, e, r.stats.evals);
+                    }
+                }
+    }
+    NOTE("a light behind a dense front, the pairs: worst HRM_OK answer %.2f rtol; %d of %d HRM_OK", worst, ok, runs);
+    /* (not passed by warning: every solve HRM_OK in double; in float the
+       pairs under the warp at rtol 1e-4 end 1-7 rtol off and say so,
+       HRM_WARN_TOLERANCE, 18 of the 60) */
+    CHECK(ok >= (real_is_float() ? runs * 2 / 3 : runs), "a light behind a dense front: %d of %d solves HRM_OK", ok,
+          runs);
+}
+
 void adaptive_tests(void)
 {
     RUN_GROUP(ad_accuracy);
@@ -1684,5 +1816,6 @@ void adaptive_tests(void)
     RUN_GROUP(ad_workspace);
     RUN_GROUP(ad_kink);
     RUN_GROUP(ad_sliver);
+    RUN_GROUP(ad_pair_front);
 }
 

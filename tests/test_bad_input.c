@@ -386,8 +386,11 @@ static const bi_row bi_rows[] = {
     BI_ARG("rtol negative", MU_RTOL, X_LIT, -1e-4, S_ALL, HRM_ERR_BAD_OPTION),
     BI_ARG("rtol NaN", MU_RTOL, X_NAN, 0, S_ALL, HRM_ERR_BAD_OPTION),
     BI_ARG("rtol +inf", MU_RTOL, X_PINF, 0, S_ALL, HRM_ERR_BAD_OPTION),
+    /* (at 100 eps a third-order pair may spend the budget first:
+       Bogacki-Shampine, HRM_WARN_MAX_EVALS, which outranks the clip) */
     {"rtol denormal (raised to 100 eps)", E_SOLVE, MU_RTOL, -1, 0, X_DENORM, 0, V_CB, S_ALL, HRM_OK,
-     HRM_WARN_RTOL_CLIPPED, BI_W(HRM_WARN_TOLERANCE) | BI_W(HRM_WARN_ROUNDOFF), K_VALID, T_CLIP},
+     HRM_WARN_RTOL_CLIPPED, BI_W(HRM_WARN_TOLERANCE) | BI_W(HRM_WARN_ROUNDOFF) | BI_W(HRM_WARN_MAX_EVALS), K_VALID,
+     T_CLIP},
     BI_OK("rtol huge (max / 4)", MU_RTOL, X_QMAX, 0, V_CB, S_ALL, HRM_OK, HRM_OK),
     BI_ARG("atol negative", MU_ATOL, X_LIT, -1e-9, S_ALL, HRM_ERR_BAD_OPTION),
     BI_ARG("atol NaN", MU_ATOL, X_NAN, 0, S_ALL, HRM_ERR_BAD_OPTION),
