@@ -27,6 +27,16 @@
              1-3 knots in [0.2, 0.5], its slope rising by 0..60 at each;
              fog sigma_t 0.5..4.5 (albedo 0.9), no warp. Reference: the
              closed form, piece by piece.
+     media   heterogeneous media from one sigma callback (media_scene):
+             a front at the camera, Gaussian bumps, a slab, on rays 1-30
+             long, medium.feature their narrowest; a point light under
+             its equiangular warp or a sky light (every other ray the
+             distance warp); the slab's faces as breakpoints every other
+             ray; then again with the exact Tr as the host's callback.
+             Reference: 8-point Gauss-Legendre with tau in closed form,
+             panels cut at the slab's faces and graded towards the bumps,
+             the front and the light's foot (against 4 times the panels:
+             within 7e-9 on every ray).
    usage: bench_sweep [outdir] [rays a family] */
 #define HRM_IMPLEMENTATION
 #include "hrm.h"
@@ -491,6 +501,209 @@ static void run_lights(int rays, int cb, tally t[NMETH], long double *pts)
     }
 }
 
+/* ---- media: heterogeneous media from callbacks ---- */
+
+typedef struct media {
+    double T, base, alb;
+    int nb;
+    double bc[3], bw[3], ba[3];  /* Gaussian bumps: centre, width, height */
+    double sa, sb, sd;           /* a slab (sd 0: none) */
+    double fa, fw;               /* a front at t = 0 (fa 0: none) */
+    double lc, lD, lp;           /* a point light (lp 0: the sky) */
+} media;
+
+#define SQRT_PI_2 0.88622692545275801 /* sqrt(pi) / 2 */
+
+static double media_sigma_t(const media *q, double t)
+{
+    double v = q->base, x;
+    int k;
+    for (k = 0; k < q->nb; ++k) {
+        x = (t - q->bc[k]) / q->bw[k];
+        v += q->ba[k] * exp(-x * x);
+    }
+    if (t >= q->sa && t < q->sb) v += q->sd;
+    x = t / q->fw;
+    return v + q->fa * exp(-x * x);
+}
+
+/* tau(0, t) in closed form */
+static double media_tau(const media *q, double t)
+{
+    double tau = q->base * t, lo = t < q->sa ? t : q->sa, hi = t < q->sb ? t : q->sb;
+    int k;
+    for (k = 0; k < q->nb; ++k)
+        tau += q->ba[k] * q->bw[k] * SQRT_PI_2 * (erf((t - q->bc[k]) / q->bw[k]) + erf(q->bc[k] / q->bw[k]));
+    tau += q->sd * (hi - lo);
+    return tau + q->fa * q->fw * SQRT_PI_2 * erf(t / q->fw);
+}
+
+static double media_li_of(const media *q, double t)
+{
+    double x = t - q->lc;
+    return q->lp > 0 ? q->lp / (q->lD * q->lD + x * x) : 1 + 0.5 * sin(1.3 * t);
+}
+
+static void media_sigma(void *user, hrm_real t, hrm_real sa[HRM_CHANNELS], hrm_real ss[HRM_CHANNELS])
+{
+    const media *q = (const media *)user;
+    double v = media_sigma_t(q, (double)t);
+    int c;
+    for (c = 0; c < HRM_CHANNELS; ++c) {
+        sa[c] = (hrm_real)((1 - q->alb) * v);
+        ss[c] = (hrm_real)(q->alb * v);
+    }
+}
+
+static void media_tr(void *user, hrm_real ta, hrm_real tb, hrm_real out[HRM_CHANNELS])
+{
+    const media *q = (const media *)user;
+    double tr = exp(-(media_tau(q, (double)tb) - media_tau(q, (double)ta)));
+    int c;
+    for (c = 0; c < HRM_CHANNELS; ++c) out[c] = (hrm_real)tr;
+}
+
+static void media_li(void *user, hrm_real t, hrm_real out[HRM_CHANNELS])
+{
+    double v = media_li_of((const media *)user, (double)t);
+    int c;
+    for (c = 0; c < HRM_CHANNELS; ++c) out[c] = (hrm_real)v;
+}
+
+static double media_f(const media *q, double t)
+{
+    return q->alb * media_sigma_t(q, t) * media_li_of(q, t) * exp(-media_tau(q, t));
+}
+
+/* 8-point Gauss-Legendre on n panels of each piece between cuts at the
+   slab's faces and graded towards each bump, the front and the light */
+static double media_ref(const media *q, int n)
+{
+    static const double x[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};
+    static const double w[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
+    double cut[80], tot = 0;
+    int nc = 0, k, j, i, l;
+    cut[nc++] = 0;
+    cut[nc++] = q->T;
+    if (q->sd > 0) {
+        cut[nc++] = q->sa;
+        cut[nc++] = q->sb;
+    }
+    for (k = 0; k < 5; ++k)
+        for (j = -1; j <= 1; j += 2) {
+            double g = pow(2, k - 2);
+            for (l = 0; l < q->nb; ++l) cut[nc++] = q->bc[l] + j * g * q->bw[l];
+            if (q->fa > 0 && j > 0) cut[nc++] = g * q->fw;
+        }
+    if (q->lp > 0)
+        for (k = -4; k <= 4; ++k)
+            for (j = -1; j <= 1; j += 2) cut[nc++] = q->lc + j * q->lD * pow(2, k);
+    for (k = 0; k < nc; ++k) cut[k] = cut[k] < 0 ? 0 : cut[k] > q->T ? q->T : cut[k];
+    for (k = 1; k < nc; ++k)
+        for (j = k; j > 0 && cut[j] < cut[j - 1]; --j) {
+            double y = cut[j];
+            cut[j] = cut[j - 1];
+            cut[j - 1] = y;
+        }
+    for (k = 0; k + 1 < nc; ++k) {
+        double h = (cut[k + 1] - cut[k]) / n;
+        if (!(h > 0)) continue;
+        for (i = 0; i < n; ++i) {
+            double m = cut[k] + (i + 0.5) * h, sum = 0;
+            for (j = 0; j < 4; ++j) sum += w[j] * (media_f(q, m - 0.5 * h * x[j]) + media_f(q, m + 0.5 * h * x[j]));
+            tot += sum * 0.5 * h;
+        }
+    }
+    return tot;
+}
+
+/* A ray 1-30 long: sigma_t a base 0.02-0.32, 0-3 Gaussian bumps 0.01-0.51
+   wide up to 5 high, a slab 3 in 10 (up to 3 more), a front at t = 0 4 in
+   10 (up to 20 high, 0.05-0.55 wide), albedo 0.5-0.95; a point light
+   0.05-0.55 from the ray 4 in 10, else a sky light 1 + 0.5 sin 1.3t;
+   medium.feature the narrowest of them. */
+static void media_scene(unsigned *seed, media *q)
+{
+    int k;
+    memset(q, 0, sizeof *q);
+    q->T = 1 + 29 * uni(seed);
+    q->base = 0.02 + 0.3 * uni(seed);
+    q->alb = 0.5 + 0.45 * uni(seed);
+    q->nb = (int)(4 * uni(seed));
+    if (q->nb > 3) q->nb = 3;
+    for (k = 0; k < q->nb; ++k) {
+        q->bc[k] = q->T * uni(seed);
+        q->bw[k] = 0.01 + 0.5 * uni(seed);
+        q->ba[k] = 5 * uni(seed) * uni(seed);
+    }
+    if (uni(seed) < 0.3) {
+        q->sa = 0.9 * q->T * uni(seed);
+        q->sb = q->sa + 0.02 + 0.2 * q->T * uni(seed);
+        if (q->sb > q->T) q->sb = q->T;
+        q->sd = 3 * uni(seed);
+    }
+    if (uni(seed) < 0.4) {
+        q->fa = 20 * uni(seed);
+        q->fw = 0.05 + 0.5 * uni(seed);
+    } else {
+        q->fw = 1; /* (no front: fa 0) */
+    }
+    if (uni(seed) < 0.4) {
+        q->lc = q->T * uni(seed);
+        q->lD = 0.05 + 0.5 * uni(seed);
+        q->lp = 0.05 + uni(seed);
+    }
+}
+
+/* Each ray under its light's warp (a sky light's: the distance warp
+   every other ray, else none), the slab's faces as breakpoints every
+   other ray; tr: the exact Tr given as the host's callback. */
+static void run_media(int rays, int tr, tally t[NMETH])
+{
+    unsigned seed = 5;
+    int i, m, k;
+    for (i = 0; i < rays; ++i) {
+        media q;
+        double rtol, ref, fw = 1e30;
+        hrm_real brk[2];
+        media_scene(&seed, &q);
+        rtol = pick_rtol(&seed);
+        ref = media_ref(&q, 8);
+        if (!(ref > 0)) continue;
+        for (k = 0; k < q.nb; ++k) fw = q.bw[k] < fw ? q.bw[k] : fw;
+        if (q.fa > 0 && q.fw < fw) fw = q.fw;
+        if (q.sd > 0 && q.sb - q.sa < fw) fw = q.sb - q.sa;
+        brk[0] = (hrm_real)q.sa;
+        brk[1] = (hrm_real)q.sb;
+        for (m = 0; m < NMETH; ++m) {
+            hrm_medium md;
+            hrm_options o = hrm_default_options(methods[m]);
+            hrm_result r;
+            hrm_status st;
+            memset(&md, 0, sizeof md);
+            md.user = &q;
+            md.sigma = media_sigma;
+            md.transmittance = tr ? media_tr : NULL;
+            md.Li = media_li;
+            md.feature = fw < 1e30 ? (hrm_real)fw : 0;
+            o.rtol = (hrm_real)rtol;
+            if (q.lp > 0) {
+                o.warp.kind = HRM_WARP_EQUIANGULAR;
+                o.warp.delta = (hrm_real)q.lc;
+                o.warp.D = (hrm_real)q.lD;
+            } else if (i % 2) {
+                o.warp.kind = HRM_WARP_DISTANCE;
+            }
+            if (q.sd > 0 && q.sa > 0 && q.sb < q.T && i % 2 == 0) {
+                o.breaks = brk;
+                o.nbreaks = 2;
+            }
+            st = hrm_solve(&md, 0, (hrm_real)q.T, &o, &r);
+            count(&t[m], st, fabs((double)r.L[0] - ref) / ref, rtol, r.stats.evals);
+        }
+    }
+}
+
 static void report(FILE *f, const char *name, int rays, const tally t[NMETH])
 {
     int m;
@@ -508,7 +721,7 @@ int main(int argc, char **argv)
     static const char *const form[2] = {"constants", "sigma callback"};
     const char *dir = argc > 1 ? argv[1] : "bench/out";
     int rays = argc > 2 ? atoi(argv[2]) : 4000, k, cb;
-    tally fog_t[2][NMETH], light_t[2][NMETH], kink_t[2][NMETH];
+    tally fog_t[2][NMETH], light_t[2][NMETH], kink_t[2][NMETH], media_t[2][NMETH];
     long double *pts = (long double *)malloc(sizeof(long double) * (SCAN + 66));
     char path[1024], name[160];
     FILE *f;
@@ -516,10 +729,12 @@ int main(int argc, char **argv)
     memset(fog_t, 0, sizeof fog_t);
     memset(light_t, 0, sizeof light_t);
     memset(kink_t, 0, sizeof kink_t);
+    memset(media_t, 0, sizeof media_t);
     for (cb = 0; cb < 2; ++cb) {
         run_fog(rays, cb, fog_t[cb]);
         run_lights(rays, cb, light_t[cb], pts);
         run_kinks(rays, cb, kink_t[cb]);
+        run_media(rays, cb, media_t[cb]);
     }
     free(pts);
     snprintf(path, sizeof path, "%s/sweep.md", dir);
@@ -529,7 +744,8 @@ int main(int argc, char **argv)
         if (!out) continue;
         fprintf(out, "## Silent answers in random scenes (hrm_real %s)\n\n`build/bench_sweep` (part of `make bench`); "
                      "bench/sweep.c says what each family is. Each ray at one rtol, log-uniform in %s..1e-1, every "
-                     "adaptive method with its defaults; the fog as constants, then as a sigma callback.\n",
+                     "adaptive method with its defaults; the fog as constants, then as a sigma callback (media: a sigma "
+                     "callback, then with the exact Tr too).\n",
                 sizeof(hrm_real) == sizeof(float) ? "float" : "double",
                 sizeof(hrm_real) == sizeof(float) ? "2e-4" : "1e-5");
         for (cb = 0; cb < 2; ++cb) {
@@ -544,6 +760,11 @@ int main(int argc, char **argv)
         for (cb = 0; cb < 2; ++cb) {
             snprintf(name, sizeof name, "kinks: an Li whose slope jumps 1-3 times, no warp; %s", form[cb]);
             report(out, name, rays, kink_t[cb]);
+        }
+        for (cb = 0; cb < 2; ++cb) {
+            snprintf(name, sizeof name, "media: fronts, bumps and slabs from a sigma callback%s, a point light "
+                     "(its warp) or the sky", cb ? " and the exact Tr" : "");
+            report(out, name, rays, media_t[cb]);
         }
     }
     if (!f) {
