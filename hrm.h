@@ -348,9 +348,9 @@
    pairs' embedded estimate, or stage values' Newton series if larger; at least
    1/2 (Gauss-Kronrod) or 1/4 (pairs) of the nodes' top Legendre coefficients
    that stop falling, a kink; scaled once splits show its rate and samples look
-   resolved, but a kink's), raised where nodes miss 1 - Tr (the layer's, or a
-   Tr callback's with sigma's), a pair's neighbours lie 20 times apart (both >
-   0, or > 1 optical depth), others' 8 (nested Simpson's 6; no fit: half the gap). An
+   resolved, but a kink's), raised where nodes miss the layer's 1 - Tr
+   (decoupled tau), a pair's neighbours lie 20 times apart (both > 0, or > 1
+   optical depth), others' 8 (nested Simpson's 6; no fit: half the gap). An
    interval whose error does not shrink may take rtol/16 of |L|, 16 times a
    call. Worst HRM_OK run, smooth scenes: 2.3 rtol. Missed tolerances: the best
    estimate and a warning: H_MIN (a step at h_min failed), MAX_EVALS
@@ -407,9 +407,9 @@
    cost more than 64 evaluations; a jump of 1% or more is located to adjacent
    abscissae and made a breakpoint at the second, the solve run again (three
    halvings that split a smooth change end the search). Every adaptive method
-   (fixed-step ones with find_jumps 1) first scans sigma_t (callbacks, also
-   with a Tr callback) at the layer's first panels' degree-8 points (33, one
-   panel a piece at least; medium.feature: gaps of at most it, 4097 at most): a
+   (fixed-step ones with find_jumps 1) first scans sigma_t (callbacks, no Tr
+   callback) at the layer's first panels' degree-8 points (33, one panel a
+   piece at least; medium.feature: gaps of at most it, 4097 points at most): a
    factor 2 between neighbours is bisected so too, a jump or edge made a
    breakpoint, a steep smooth change or a sample 1/8 off both neighbours (1/64
    if evenly at medium.feature) taught to the layer; the scan ends where its
@@ -682,7 +682,12 @@ typedef struct hrm_medium {
                                           (one density lookup), instead of
                                           the three above; NULL: those */
     hrm_spectrum_fn Le, Li;            /* NULL: absent, never called */
-    hrm_transmittance_fn transmittance;/* NULL: integrate sigma_t */
+    hrm_transmittance_fn transmittance;/* NULL: integrate sigma_t. Given,
+                                          no medium scan or check reads
+                                          sigma between the nodes: a
+                                          slab or bump there is unseen
+                                          (give sigma alone, or the
+                                          breakpoints) */
     unsigned flags;                    /* HRM_MEDIUM_*, HRM_EMISSION_* */
     hrm_real const_sigma_a[HRM_CHANNELS]; /* with HRM_MEDIUM_HOMOGENEOUS */
     hrm_real const_sigma_s[HRM_CHANNELS];
@@ -757,8 +762,8 @@ typedef struct hrm_options {
                            change nothing */
     int nbreaks;
     int find_jumps;     /* 0 (the default): every adaptive method scans
-                           sigma (callbacks, with a transmittance
-                           callback or without) for jumps before it runs, and
+                           sigma (callbacks; not where a transmittance
+                           callback gives Tr) for jumps before it runs, and
                            nested Simpson and global Gauss-Kronrod also
                            locate a jump of the source that refinement
                            does not shrink (a shadow's edge); each jump is
@@ -1539,8 +1544,7 @@ typedef struct hrm__ctx {
     int tr_at_nodes;       /* the driver reads Tr at its nodes (not the
                               analytic march: its steps' ends) */
     int mcheck;            /* the adaptive rules' nodes are checked against
-                              the layer's tau or the host's Tr
-                              (hrm__medium_miss) */
+                              the layer's tau (hrm__medium_miss) */
     int coupled;           /* tau by the rules from the source nodes' sigma_t */
     int need_st;           /* sigma_t samples at the source nodes needed
                               (coupled tau, or the RTE form) */
@@ -4099,15 +4103,6 @@ static HRM_DEVICE void hrm__medium_at(hrm__ctx *c, hrm_real s, hrm_real s_raw, h
     } else if (c->closed) {
         if (hrm__tr_call(c, s, pt->tr)) medium = 0; /* counted there: one per abscissa */
         hrm__tau_of_tr(pt);
-        if (c->mcheck) {
-            /* the medium check's sigma_t ds/dp: the node's own */
-            for (i = 0; i < HRM__CH; ++i) {
-                pt->sg[i] = st[i] * pt->J;
-                if (!(pt->sg[i] <= c->range)) pt->sg[i] = 0; /* (a check only) */
-            }
-            if (!(c->use_le && !c->per_length)) hrm__fill(sa, HRM__CH, 0);
-            if (!c->use_li) hrm__fill(ss, HRM__CH, 0);
-        }
     }
     c->stats.medium_evals += medium;
 }
@@ -4969,12 +4964,7 @@ static HRM_DEVICE HRM__CALL void hrm__emission_miss(const hrm__ctx *c, const hrm
    to sigma_t Tr, whose integral over the interval the layer gives exactly
    (A = Tr(a) - Tr(b), the light it absorbs), measures the miss: where the
    source per extinction S / sigma_t is R, the light the nodes miss is
-   R |rule - A|. (With the host's Tr callback and sigma callbacks the
-   same: A from its Tr, the rule on the nodes' own sigma_t, whose Tr
-   the callback is; a slab or a bump between a ray's nodes, the light it
-   scatters lost with HRM_OK, up to 54 rtol off, in about 2% of the
-   random media of bench/sweep.c before.) R is the largest S / sigma_t at
-   the nodes (at least
+   R |rule - A|. R is the largest S / sigma_t at the nodes (at least
    their rule of S Tr over that of sigma_t Tr): what the nodes miss of
    the medium lies somewhere in the interval, and where S / sigma_t
    varies over it (a light's peak) the miss counts at the largest
@@ -7597,7 +7587,7 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, 
                     (hrm__driver(o) == HRM__DRV_NS || hrm__driver(o) == HRM__DRV_GK);
     /* the medium scan: adaptive methods by default, fixed-step ones when
        asked (find_jumps = 1; their cost is otherwise N's alone) */
-    c->scan = (o->find_jumps == 1 || (o->find_jumps == 0 && hrm__is_adaptive(o->method))) && !c->homog &&
+    c->scan = (o->find_jumps == 1 || (o->find_jumps == 0 && hrm__is_adaptive(o->method))) && !c->homog && !m->transmittance &&
               (m->sigma_a || m->sigma_s || m->sigma_t || m->sigma) && t_fine;
     c->gk = o->gk_rule == HRM_GK_K7 ? &hrm__k7 : &hrm__k15;
     c->rough_left = HRM__JUMP;
@@ -7612,8 +7602,7 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, 
     c->src = hrm__tau_source(m, o, c->use_le || c->use_li);
     c->decoupled = c->src == HRM__TAU_LAYER;
     c->closed = hrm__tau_closed(c->src);
-    c->mcheck = (c->decoupled || (c->src == HRM__TAU_TRCB && (m->sigma || m->sigma_t || m->sigma_a || m->sigma_s))) &&
-                hrm__is_adaptive(o->method);
+    c->mcheck = c->decoupled && hrm__is_adaptive(o->method);
     c->coupled = c->src == HRM__TAU_RULES;
     c->need_st = c->coupled || c->rte || c->src == HRM__TAU_STREAM;
     c->expo = c->closed ? o->exponential : 0;
@@ -8198,12 +8187,12 @@ static HRM_DEVICE HRM__CALL int hrm__locate_sigma_jump(hrm__ctx *c, hrm_real a, 
    rtol 1e-2; in a random search of holes and bumps under a Gaussian Li,
    nested Simpson at rtol 1e-1..1e-3, 126 and 55 of 10 000 solves silent
    without, 18 and 16 with it, those left the source's own miss of a
-   narrow Li, as silent with the exact Tr given). With a transmittance
-   callback too (no layer to teach): sigma's jumps are the source's, and
-   the medium check (hrm__medium_miss) does not bound what lies across
-   one (bench/sweep.c's media with the exact Tr). The scan ends where the
-   trapezoid rule on its own samples puts tau (the thinnest channel's)
-   past twice ln(64 / rtol):
+   narrow Li, as silent with the exact Tr given). Not where a
+   transmittance callback gives Tr: no layer to teach (33 sigma calls a
+   solve saved), and what lies between the nodes stays unseen (bench/
+   README.md, "Found, not fixed: a transmittance callback"; the scan
+   alone found a fifth of it). The scan ends where the trapezoid rule on its
+   own samples puts tau (the thinnest channel's) past twice ln(64 / rtol):
    behind that no jump moves L by a share of rtol, and the layer and the
    rules, which still cover the rest, spend little there (a cloud's core:
    a quarter of a camera ray's lookups saved). */
