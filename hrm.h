@@ -352,7 +352,7 @@
    (decoupled tau), a pair's neighbours lie 20 times apart (both > 0, or > 1
    optical depth), others' 8 (nested Simpson's 6; no fit: half the gap). An
    interval whose error does not shrink may take rtol/16 of |L|, 16 times a
-   call. Worst HRM_OK run, smooth scenes: 2.3 rtol. Missed tolerances: the best
+   call. Worst HRM_OK run, smooth scenes: 0.96 rtol. Missed tolerances: the best
    estimate and a warning: H_MIN (a step at h_min failed), MAX_EVALS
    (stats.evals <= max_evals, a user warp's calls 4 max_evals), STORAGE (a
    finish HRM_MAX_DEPTH deep), ROUNDOFF (bisection no longer helps, or t

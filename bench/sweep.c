@@ -172,18 +172,29 @@ static void fog_li(void *user, hrm_real t, hrm_real out[HRM_CHANNELS])
     for (c = 0; c < HRM_CHANNELS; ++c) out[c] = (hrm_real)(exp(-f->fog.st * sqrt(r2)) / r2);
 }
 
-static double fog_gl(const fog *f, double a, double b, int n)
+/* 8-point Gauss-Legendre (Abramowitz and Stegun 25.4.30) of f on n
+   panels of [a, b] */
+static double gl8(double (*f)(const void *, double), const void *ctx, double a, double b, int n)
 {
-    /* 8-point Gauss-Legendre (Abramowitz and Stegun 25.4.30) */
     static const double x[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};
     static const double w[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
     double h = (b - a) / n, sum = 0;
     int i, j;
     for (i = 0; i < n; ++i) {
         double m = a + (i + 0.5) * h;
-        for (j = 0; j < 4; ++j) sum += w[j] * (fog_f(f, m - 0.5 * h * x[j]) + fog_f(f, m + 0.5 * h * x[j]));
+        for (j = 0; j < 4; ++j) sum += w[j] * (f(ctx, m - 0.5 * h * x[j]) + f(ctx, m + 0.5 * h * x[j]));
     }
     return sum * 0.5 * h;
+}
+
+static double fog_fv(const void *f, double t)
+{
+    return fog_f((const fog *)f, t);
+}
+
+static double fog_gl(const fog *f, double a, double b, int n)
+{
+    return gl8(fog_fv, f, a, b, n);
 }
 
 static double fog_ref(const fog *f, double t1)
@@ -570,8 +581,9 @@ static void media_li(void *user, hrm_real t, hrm_real out[HRM_CHANNELS])
     for (c = 0; c < HRM_CHANNELS; ++c) out[c] = (hrm_real)v;
 }
 
-static double media_f(const media *q, double t)
+static double media_f(const void *p, double t)
 {
+    const media *q = (const media *)p;
     return q->alb * media_sigma_t(q, t) * media_li_of(q, t) * exp(-media_tau(q, t));
 }
 
@@ -579,10 +591,8 @@ static double media_f(const media *q, double t)
    slab's faces and graded towards each bump, the front and the light */
 static double media_ref(const media *q, int n)
 {
-    static const double x[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};
-    static const double w[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
     double cut[80], tot = 0;
-    int nc = 0, k, j, i, l;
+    int nc = 0, k, j, l;
     cut[nc++] = 0;
     cut[nc++] = q->T;
     if (q->sd > 0) {
@@ -605,15 +615,8 @@ static double media_ref(const media *q, int n)
             cut[j] = cut[j - 1];
             cut[j - 1] = y;
         }
-    for (k = 0; k + 1 < nc; ++k) {
-        double h = (cut[k + 1] - cut[k]) / n;
-        if (!(h > 0)) continue;
-        for (i = 0; i < n; ++i) {
-            double m = cut[k] + (i + 0.5) * h, sum = 0;
-            for (j = 0; j < 4; ++j) sum += w[j] * (media_f(q, m - 0.5 * h * x[j]) + media_f(q, m + 0.5 * h * x[j]));
-            tot += sum * 0.5 * h;
-        }
-    }
+    for (k = 0; k + 1 < nc; ++k)
+        if (cut[k + 1] > cut[k]) tot += gl8(media_f, q, cut[k], cut[k + 1], n);
     return tot;
 }
 
