@@ -348,9 +348,9 @@
    pairs' embedded estimate, or stage values' Newton series if larger; at least
    1/2 (Gauss-Kronrod) or 1/4 (pairs) of the nodes' top Legendre coefficients
    that stop falling, a kink; scaled once splits show its rate and samples look
-   resolved, but a kink's), raised where nodes miss the layer's 1 - Tr
-   (decoupled tau), a pair's neighbours lie 20 times apart (both > 0, or > 1
-   optical depth), others' 8 (nested Simpson's 6; no fit: half the gap). An
+   resolved, but a kink's), raised where nodes miss the layer's 1 - Tr (a Tr
+   callback's by 1/4), a pair's neighbours lie 20 times apart (both > 0, or >
+   1 optical depth), others' 8 (nested Simpson's 6; no fit: half the gap). An
    interval whose error does not shrink may take rtol/16 of |L|, 16 times a
    call. Worst HRM_OK run, smooth scenes: 0.96 rtol. Missed tolerances: the best
    estimate and a warning: H_MIN (a step at h_min failed), MAX_EVALS
