@@ -687,8 +687,9 @@ typedef struct hrm_medium {
                                           slab or bump between the nodes
                                           is seen only where it holds a
                                           quarter of an interval's
-                                          absorption (give sigma alone,
-                                          or the breakpoints) */
+                                          absorption and sigma comes as
+                                          one call (give sigma alone, or
+                                          the breakpoints) */
     unsigned flags;                    /* HRM_MEDIUM_*, HRM_EMISSION_* */
     hrm_real const_sigma_a[HRM_CHANNELS]; /* with HRM_MEDIUM_HOMOGENEOUS */
     hrm_real const_sigma_s[HRM_CHANNELS];
@@ -5020,7 +5021,7 @@ static HRM_DEVICE HRM__CALL void hrm__medium_miss(const hrm__ctx *c, const hrm__
         tra = pt[0]->tau[i] == tau_a[i] ? pt[0]->tr[i] : HRM_EXP(-tau_a[i]);
         A = tra * -HRM_EXPM1(-d);
         if (!(A > 64 * HRM__EPS)) { /* Tr is 0 there: no light to miss */
-            hrm__emission_one(c, i, pt, w, n, h, tau_a, tau_b, em);
+            if (!c->tau_from_tr) hrm__emission_one(c, i, pt, w, n, h, tau_a, tau_b, em);
             continue;
         }
         for (j = 0; j < n; ++j) {
@@ -5060,10 +5061,12 @@ static HRM_DEVICE HRM__CALL void hrm__medium_miss(const hrm__ctx *c, const hrm__
             rel = rel > 0 ? rel / A : 0;
         }
         /* against the host's Tr, a gross miss only, on an interval wider
-           than the medium's feature (or 1/64 of the ray): a callback off
-           its sigma's integral is no feature (0.1% off in tau, nested
-           Simpson, Gauss-Kronrod and Dormand-Prince spent their whole
-           budget where every miss counted; 30% off costs nothing here) */
+           than the medium's feature (or 1/64 of the ray), and the
+           emission's miss only with it: a callback off its sigma's
+           integral is no feature (0.1% off in tau, nested Simpson,
+           Gauss-Kronrod and Dormand-Prince spent their whole budget
+           where every miss counted, the emission's too; 30% off costs
+           nothing here) */
         if (c->tau_from_tr &&
             (rel < HRM__R(0.25) || !(off_b - off_a > (c->m->feature > 0 ? c->m->feature : c->off_end / 64))))
             rel = 0;
@@ -5075,7 +5078,8 @@ static HRM_DEVICE HRM__CALL void hrm__medium_miss(const hrm__ctx *c, const hrm__
         }
         em[i] = R * A * rel;
         /* the emission's miss from the same sums (hrm__emission_miss) */
-        if (!c->expo && c->em_max[i] > 0) hrm__emission_part(c, i, MT, A, tra, dd, em);
+        if (!c->expo && c->em_max[i] > 0 && (!c->tau_from_tr || rel > 0))
+            hrm__emission_part(c, i, MT, A, tra, dd, em);
     }
 }
 
@@ -7626,7 +7630,12 @@ static HRM_DEVICE HRM__CALL hrm_status hrm__setup(hrm__ctx *c, hrm__tau *layer, 
     c->src = hrm__tau_source(m, o, c->use_le || c->use_li);
     c->decoupled = c->src == HRM__TAU_LAYER;
     c->closed = hrm__tau_closed(c->src);
-    c->mcheck = (c->decoupled || (c->src == HRM__TAU_TRCB && (m->sigma || m->sigma_t || m->sigma_a || m->sigma_s))) &&
+    /* (against a Tr callback only where sigma_t at a node costs no call
+       more than the source's: sigma as one call, or sigma_a and sigma_s
+       both wanted) */
+    c->mcheck = (c->decoupled || (c->src == HRM__TAU_TRCB &&
+                                  (m->sigma || (!m->sigma_t && m->sigma_a && m->sigma_s && c->use_le &&
+                                                !c->per_length && c->use_li)))) &&
                 hrm__is_adaptive(o->method);
     c->coupled = c->src == HRM__TAU_RULES;
     c->need_st = c->coupled || c->rte || c->src == HRM__TAU_STREAM;
